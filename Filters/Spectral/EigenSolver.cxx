@@ -1,0 +1,914 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "EigenSolver.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Dense>
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace spectral
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string Str(double value)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
+  return buffer;
+}
+
+/**
+ * CHOLMOD simplicial LDL^T of L - sigma M. The pattern of L + M is analysed once; each shift
+ * reuses that analysis (fill-reducing ordering and symbolic factor). The pivots D give the
+ * inertia of L - sigma M.
+ */
+class ShiftedFactor : public Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>
+{
+public:
+  ShiftedFactor(const SparseMatrix& L, const SparseMatrix& M)
+    : StiffnessMatrix(L)
+    , MassMatrix(M)
+  {
+    this->analyzePattern(SparseMatrix(L + M));
+  }
+  ShiftedFactor(const ShiftedFactor&) = delete;
+  ShiftedFactor& operator=(const ShiftedFactor&) = delete;
+
+  /// Factor L - sigma M. Returns false if a pivot is zero or not finite.
+  bool Factor(double sigma)
+  {
+    this->Shifted = this->StiffnessMatrix - sigma * this->MassMatrix;
+    this->factorize(this->Shifted);
+    if (this->info() != Eigen::Success)
+    {
+      return false;
+    }
+    const cholmod_factor* f = this->m_cholmodFactor;
+    const int* p = static_cast<const int*>(f->p);
+    const double* x = static_cast<const double*>(f->x);
+    this->Negative = 0;
+    for (std::size_t j = 0; j < f->n; ++j)
+    {
+      const double pivot = x[p[j]];
+      if (!std::isfinite(pivot) || pivot == 0.0)
+      {
+        return false;
+      }
+      this->Negative += (pivot < 0.0) ? 1 : 0;
+    }
+    return true;
+  }
+
+  /// Number of negative pivots of the last factorization: eigenvalues below its shift.
+  int NegativePivots() const { return this->Negative; }
+
+  /// L - sigma M of the last factorization.
+  const SparseMatrix& ShiftedMatrix() const { return this->Shifted; }
+
+  /**
+   * X = (L - sigma M)^-1 B for a block of right-hand sides. The triangular solves are bound by
+   * reading the factor, so they run on the factor's arrays directly with the block stored by
+   * rows: every entry of the factor, read once, updates all columns at once. The two halves of
+   * the block are solved on two threads.
+   */
+  DenseMatrix SolveBlock(const DenseMatrix& B) const
+  {
+    DenseMatrix X(B.rows(), B.cols());
+    const Eigen::Index half = B.cols() / 2;
+    if (half == 0)
+    {
+      this->SolveColumns(B, X, 0, B.cols());
+      return X;
+    }
+    std::thread helper([this, &B, &X, half]() { this->SolveColumns(B, X, 0, half); });
+    this->SolveColumns(B, X, half, B.cols() - half);
+    helper.join();
+    return X;
+  }
+
+private:
+  /// Columns [first, first + count) of X = (P^T L D L^T P)^-1 B.
+  void SolveColumns(
+    const DenseMatrix& B, DenseMatrix& X, Eigen::Index first, Eigen::Index count) const
+  {
+    using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const cholmod_factor* f = this->m_cholmodFactor;
+    const Eigen::Index n = static_cast<Eigen::Index>(f->n);
+    const int* colStart = static_cast<const int*>(f->p);
+    const int* rows = static_cast<const int*>(f->i);
+    const int* colCount = static_cast<const int*>(f->nz);
+    const double* values = static_cast<const double*>(f->x);
+    const int* perm = static_cast<const int*>(f->Perm);
+    RowBlock Y(n, count);
+    for (Eigen::Index k = 0; k < n; ++k)
+    {
+      Y.row(k) = B.row(perm[k]).segment(first, count);
+    }
+    double* y = Y.data();
+    for (Eigen::Index j = 0; j < n; ++j) // L y = P b
+    {
+      const double* yj = y + j * count;
+      for (int e = colStart[j] + 1; e < colStart[j] + colCount[j]; ++e)
+      {
+        double* yi = y + static_cast<Eigen::Index>(rows[e]) * count;
+        const double l = values[e];
+        for (Eigen::Index c = 0; c < count; ++c)
+        {
+          yi[c] -= l * yj[c];
+        }
+      }
+    }
+    for (Eigen::Index j = 0; j < n; ++j) // D z = y
+    {
+      Y.row(j) /= values[colStart[j]];
+    }
+    for (Eigen::Index j = n - 1; j >= 0; --j) // L^T w = z
+    {
+      double* yj = y + j * count;
+      for (int e = colStart[j] + 1; e < colStart[j] + colCount[j]; ++e)
+      {
+        const double* yi = y + static_cast<Eigen::Index>(rows[e]) * count;
+        const double l = values[e];
+        for (Eigen::Index c = 0; c < count; ++c)
+        {
+          yj[c] -= l * yi[c];
+        }
+      }
+    }
+    for (Eigen::Index k = 0; k < n; ++k)
+    {
+      X.row(perm[k]).segment(first, count) = Y.row(k);
+    }
+  }
+
+  const SparseMatrix& StiffnessMatrix;
+  const SparseMatrix& MassMatrix;
+  SparseMatrix Shifted;
+  int Negative = 0;
+};
+
+/// Spectra operation y = (L - sigma M)^-1 x on a ShiftedFactor; polls for cancellation.
+class ShiftInvertOp
+{
+public:
+  using Scalar = double;
+
+  ShiftInvertOp(const ShiftedFactor& factor, const Monitor& monitor, Eigen::Index n)
+    : Factor(factor)
+    , Watch(monitor)
+    , Size(n)
+    , In(n)
+  {
+  }
+  Eigen::Index rows() const { return this->Size; }
+  Eigen::Index cols() const { return this->Size; }
+  /// The factorization is made before the solver starts; nothing to do here.
+  void set_shift(const Scalar&) {}
+  void perform_op(const Scalar* xIn, Scalar* yOut) const
+  {
+    this->Watch.ThrowIfCancelled();
+    this->In = Eigen::Map<const Vector>(xIn, this->Size);
+    Eigen::Map<Vector>(yOut, this->Size) = this->Factor.solve(this->In);
+  }
+
+private:
+  const ShiftedFactor& Factor;
+  const Monitor& Watch;
+  Eigen::Index Size;
+  mutable Vector In;
+};
+
+/// Spectra operation y = M x.
+class MassOp
+{
+public:
+  using Scalar = double;
+
+  explicit MassOp(const SparseMatrix& M)
+    : Mass(M)
+  {
+  }
+  Eigen::Index rows() const { return this->Mass.rows(); }
+  Eigen::Index cols() const { return this->Mass.cols(); }
+  void perform_op(const Scalar* xIn, Scalar* yOut) const
+  {
+    Eigen::Map<Vector>(yOut, this->Mass.rows()) =
+      this->Mass * Eigen::Map<const Vector>(xIn, this->Mass.cols());
+  }
+
+private:
+  const SparseMatrix& Mass;
+};
+
+/// Eigenpairs of one band, sorted ascending.
+struct Band
+{
+  Vector Values;
+  DenseMatrix Vectors;
+};
+
+/**
+ * The nev eigenpairs nearest sigma with Spectra's shift-invert Lanczos in the M inner product.
+ * Attempt 0 starts from Spectra's default vector, later attempts from other random vectors and
+ * with a larger subspace. \throws SolverFailure if the band does not converge.
+ */
+Band RunBand(const ShiftInvertOp& op, const MassOp& mass, double sigma, int nev, int attempt,
+  const EigenOptions& options)
+{
+  const Eigen::Index n = op.rows();
+  const int ncv = static_cast<int>(
+    std::min<Eigen::Index>(n, std::max(2 * nev + 1, nev + 20) + attempt * nev));
+  ShiftInvertOp opCopy = op;
+  MassOp massCopy = mass;
+  Spectra::SymGEigsShiftSolver<ShiftInvertOp, MassOp, Spectra::GEigsMode::ShiftInvert> eigs(
+    opCopy, massCopy, nev, ncv, sigma);
+  if (attempt == 0)
+  {
+    eigs.init();
+  }
+  else
+  {
+    std::mt19937 generator(12345u + static_cast<unsigned>(attempt));
+    std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+    Vector start(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+      start[i] = uniform(generator);
+    }
+    eigs.init(start.data());
+  }
+  const Eigen::Index converged = eigs.compute(Spectra::SortRule::LargestMagn,
+    options.MaxIterations, options.Tolerance, Spectra::SortRule::SmallestAlge);
+  if (eigs.info() != Spectra::CompInfo::Successful || converged < nev)
+  {
+    throw SolverFailure("the Lanczos iteration of the band at shift " + Str(sigma) +
+        " converged for " + std::to_string(converged) + " of " + std::to_string(nev) +
+        " eigenpairs in " + std::to_string(options.MaxIterations) +
+        " restarts; raise MaxIterations or loosen Tolerance",
+      static_cast<int>(converged));
+  }
+  Band band{ eigs.eigenvalues(), eigs.eigenvectors() };
+  std::vector<int> order(band.Values.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = static_cast<int>(i);
+  }
+  std::sort(order.begin(), order.end(),
+    [&band](int a, int b) { return band.Values[a] < band.Values[b]; });
+  Band sorted{ Vector(band.Values.size()), DenseMatrix(n, band.Values.size()) };
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    sorted.Values[i] = band.Values[order[i]];
+    sorted.Vectors.col(i) = band.Vectors.col(order[i]);
+  }
+  return sorted;
+}
+
+/**
+ * M-orthonormalize the columns of W in place (two passes of SVQB: eigen-decomposition of the
+ * Gram matrix) and return R with W_in = W_out R. Directions whose norm fell below `floor`
+ * (the block is nearly inside the span of Basis) are replaced by random vectors M-orthogonal to
+ * Basis and to the other columns; their rows of R are zero.
+ */
+DenseMatrix Orthonormalize(DenseMatrix& W, const SparseMatrix& M,
+  const Eigen::Ref<const DenseMatrix>& Basis, double floor, std::mt19937& generator)
+{
+  const Eigen::Index b = W.cols();
+  DenseMatrix R = DenseMatrix::Identity(b, b);
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    DenseMatrix G = W.transpose() * (M * W);
+    G = 0.5 * (G + G.transpose()).eval();
+    Eigen::SelfAdjointEigenSolver<DenseMatrix> gram(G);
+    const Vector& g = gram.eigenvalues();
+    const DenseMatrix& U = gram.eigenvectors();
+    DenseMatrix S = DenseMatrix::Zero(b, b);
+    DenseMatrix Rpass = DenseMatrix::Zero(b, b);
+    std::vector<Eigen::Index> deficient;
+    for (Eigen::Index i = 0; i < b; ++i)
+    {
+      if (g[i] > floor)
+      {
+        S.col(i) = U.col(i) / std::sqrt(g[i]);
+        Rpass.row(i) = std::sqrt(g[i]) * U.col(i).transpose();
+      }
+      else
+      {
+        deficient.push_back(i);
+      }
+    }
+    W = (W * S).eval();
+    R = (Rpass * R).eval();
+    std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+    for (const Eigen::Index i : deficient)
+    {
+      Vector v(W.rows());
+      for (Eigen::Index r = 0; r < v.size(); ++r)
+      {
+        v[r] = uniform(generator);
+      }
+      for (int again = 0; again < 2; ++again)
+      {
+        v -= Basis * (Basis.transpose() * (M * v));
+        v -= W * (W.transpose() * (M * v));
+      }
+      W.col(i) = v / std::sqrt(v.dot(M * v));
+    }
+  }
+  return R;
+}
+
+/**
+ * The nev eigenpairs nearest sigma by block Lanczos on Op = (L - sigma M)^-1 M in the M inner
+ * product, with full block reorthogonalization (two passes of classical Gram-Schmidt, matrix-
+ * matrix products only) and thick restarts that keep the best Ritz vectors. The projected matrix
+ * T = V^T M Op V is assembled from the Gram-Schmidt coefficients. A block of b vectors finds
+ * eigenvalues of multiplicity up to b directly. A pair counts as converged when its Ritz estimate
+ * is below Tolerance and its exact residual below ResidualTolerance / 20, relative to
+ * max(|lambda|, lambdaReference) (lambdaReference <= 0: the band's first non-zero eigenvalue).
+ * \throws SolverFailure without convergence.
+ */
+Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sigma, int nev,
+  int attempt, double lambdaReference, const EigenOptions& options, const Monitor& monitor,
+  EigenResult& stats)
+{
+  const Vector inverseMass = (M * Vector::Ones(M.cols())).cwiseInverse();
+  Clock::time_point start = Clock::now();
+  const Eigen::Index n = M.rows();
+  const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(32, nev / 6)), n / 4 + 1);
+  Eigen::Index maxDim = std::max<Eigen::Index>(3 * nev + 2 * b, nev + 6 * b) * (attempt + 2) / 2;
+  maxDim = std::min<Eigen::Index>(maxDim, n - b);
+  if (maxDim < nev + b)
+  {
+    throw SolverFailure("the band of " + std::to_string(nev) + " eigenpairs does not fit a problem "
+                        "of " + std::to_string(n) + " unknowns");
+  }
+  std::mt19937 generator(20080415u + 7919u * static_cast<unsigned>(attempt));
+  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+
+  DenseMatrix V(n, maxDim + b);
+  DenseMatrix T = DenseMatrix::Zero(maxDim + b, maxDim + b);
+  DenseMatrix W(n, b);
+  for (Eigen::Index j = 0; j < b; ++j)
+  {
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+      W(i, j) = uniform(generator);
+    }
+  }
+  Orthonormalize(W, M, V.leftCols(0), 0.0, generator);
+  V.leftCols(b) = W;
+  Eigen::Index applied = 0; // columns whose image under Op is in T
+  Eigen::Index filled = b;  // columns of V in use
+
+  for (int restart = 0; restart <= options.MaxIterations; ++restart)
+  {
+    while (filled <= maxDim)
+    {
+      monitor.ThrowIfCancelled();
+      start = Clock::now();
+      const auto block = V.middleCols(applied, b);
+      W = factor.SolveBlock(M * block);
+      stats.OperatorApplications += b;
+      stats.Seconds.Solve += SecondsSince(start);
+      start = Clock::now();
+      const double reference = W.cwiseAbs2().colwise().sum().maxCoeff();
+      const auto basis = V.leftCols(filled);
+      DenseMatrix C = basis.transpose() * (M * W);
+      W.noalias() -= basis * C;
+      const DenseMatrix C2 = basis.transpose() * (M * W);
+      W.noalias() -= basis * C2;
+      C += C2;
+      const DenseMatrix R = Orthonormalize(W, M, basis, 1e-26 * reference, generator);
+      T.block(0, applied, filled, b) = C;
+      T.block(applied, 0, b, filled) = C.transpose();
+      T.block(filled, applied, b, b) = R;
+      T.block(applied, filled, b, b) = R.transpose();
+      V.middleCols(filled, b) = W;
+      applied = filled;
+      filled += b;
+      stats.Seconds.Orthogonalization += SecondsSince(start);
+    }
+    start = Clock::now();
+
+    DenseMatrix Tk = T.topLeftCorner(applied, applied);
+    Tk = 0.5 * (Tk + Tk.transpose()).eval();
+    Eigen::SelfAdjointEigenSolver<DenseMatrix> ritz(Tk);
+    const Vector& theta = ritz.eigenvalues();
+    const DenseMatrix coupling = T.block(applied, 0, b, applied) * ritz.eigenvectors();
+    std::vector<Eigen::Index> order(static_cast<std::size_t>(applied));
+    for (Eigen::Index i = 0; i < applied; ++i)
+    {
+      order[static_cast<std::size_t>(i)] = i;
+    }
+    std::sort(order.begin(), order.end(), [&theta](Eigen::Index a, Eigen::Index c) {
+      return std::abs(theta[a]) > std::abs(theta[c]);
+    });
+    // Pairs nearest the shift first; a band returns the converged pairs nearest its shift (at
+    // least `wanted` of them). Whatever lies farther is left to the next band; the inertia
+    // checks of the caller make sure nothing in between is missed.
+    // A Ritz pair (theta, x = V y) leaves Op x - theta x = Q c with Q the next block and
+    // c = coupling y, so its residual for the pencil is L x - lambda M x = -(L - sigma M) Q c / theta
+    // with lambda = sigma + 1/theta: exact, and cheap through the Gram matrix of (L - sigma M) Q.
+    const DenseMatrix Z = factor.ShiftedMatrix() * V.middleCols(applied, b);
+    const DenseMatrix residualGram = Z.transpose() * (inverseMass.asDiagonal() * Z);
+    double reference = lambdaReference;
+    if (!(reference > 0.0))
+    {
+      reference = 0.0;
+      double top = 0.0;
+      for (int i = 0; i < std::min<int>(nev, static_cast<int>(applied)); ++i)
+      {
+        top = std::max(top, std::abs(sigma + 1.0 / theta[order[static_cast<std::size_t>(i)]]));
+      }
+      reference = top;
+      for (int i = 0; i < std::min<int>(nev, static_cast<int>(applied)); ++i)
+      {
+        const double lambda = std::abs(sigma + 1.0 / theta[order[static_cast<std::size_t>(i)]]);
+        reference = lambda > 1e-6 * top ? std::min(reference, lambda) : reference;
+      }
+    }
+    const int wanted = std::max(1, (4 * nev) / 5);
+    int converged = 0;
+    while (converged < nev)
+    {
+      const Eigen::Index k = order[static_cast<std::size_t>(converged)];
+      const double lambda = sigma + 1.0 / theta[k];
+      const double residual =
+        std::sqrt(std::max(0.0, coupling.col(k).dot(residualGram * coupling.col(k)))) /
+        std::abs(theta[k]);
+      if (coupling.col(k).norm() > options.Tolerance * std::abs(theta[k]) ||
+        residual > 0.05 * options.ResidualTolerance * std::max(std::abs(lambda), reference))
+      {
+        break;
+      }
+      ++converged;
+    }
+    if (converged >= wanted || restart == options.MaxIterations)
+    {
+      if (converged < wanted)
+      {
+        throw SolverFailure("the block Lanczos iteration of the band at shift " + Str(sigma) +
+            " converged for " + std::to_string(converged) + " of " + std::to_string(nev) +
+            " eigenpairs in " + std::to_string(options.MaxIterations) +
+            " restarts; raise MaxIterations or loosen Tolerance",
+          converged);
+      }
+      DenseMatrix Y(applied, converged);
+      std::vector<std::pair<double, Eigen::Index>> values;
+      for (int i = 0; i < converged; ++i)
+      {
+        const Eigen::Index k = order[static_cast<std::size_t>(i)];
+        values.emplace_back(sigma + 1.0 / theta[k], k);
+      }
+      std::sort(values.begin(), values.end());
+      Band band{ Vector(converged), DenseMatrix() };
+      for (int i = 0; i < converged; ++i)
+      {
+        band.Values[i] = values[static_cast<std::size_t>(i)].first;
+        Y.col(i) = ritz.eigenvectors().col(values[static_cast<std::size_t>(i)].second);
+      }
+      band.Vectors.noalias() = V.leftCols(applied) * Y;
+      stats.Seconds.RayleighRitz += SecondsSince(start);
+      return band;
+    }
+
+    // Thick restart: keep the best Ritz vectors and the last block.
+    const Eigen::Index keep = std::min<Eigen::Index>(
+      std::max<Eigen::Index>(nev + b, (applied + nev) / 2), maxDim - 2 * b);
+    DenseMatrix Y(applied, keep);
+    Vector kept(keep);
+    for (Eigen::Index i = 0; i < keep; ++i)
+    {
+      const Eigen::Index k = order[static_cast<std::size_t>(i)];
+      Y.col(i) = ritz.eigenvectors().col(k);
+      kept[i] = theta[k];
+    }
+    const DenseMatrix X = V.leftCols(applied) * Y;
+    const DenseMatrix last = V.middleCols(applied, b);
+    const DenseMatrix link = T.block(applied, 0, b, applied) * Y;
+    V.leftCols(keep) = X;
+    V.middleCols(keep, b) = last;
+    T.setZero();
+    T.topLeftCorner(keep, keep) = kept.asDiagonal();
+    T.block(keep, 0, b, keep) = link;
+    T.block(0, keep, keep, b) = link.transpose();
+    applied = keep;
+    filled = keep + b;
+    stats.Seconds.RayleighRitz += SecondsSince(start);
+  }
+  throw SolverFailure("the block Lanczos iteration did not converge");
+}
+
+/// Eigenpairs accepted so far, ascending: columns [0, Count) of Vectors.
+struct Accepted
+{
+  DenseMatrix Vectors;
+  std::vector<double> Values;
+
+  int Count() const { return static_cast<int>(this->Values.size()); }
+  int CountBelow(double x) const
+  {
+    return static_cast<int>(
+      std::lower_bound(this->Values.begin(), this->Values.end(), x) - this->Values.begin());
+  }
+};
+
+/**
+ * Merge the trusted vectors of a band into the accepted set. The accepted vectors with
+ * eigenvalue >= windowLow and the band's vectors span the eigenspaces of the overlap; a
+ * Rayleigh-Ritz step on the rank-revealed joint span replaces them, so a direction found by both
+ * bands is kept once, and a multiple eigenvalue split by the seam is kept whole.
+ */
+void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseMatrix& L,
+  const SparseMatrix& M)
+{
+  const int first = accepted.CountBelow(windowLow);
+  const int fromAccepted = accepted.Count() - first;
+  const Eigen::Index p = fromAccepted + band.Values.size();
+  DenseMatrix Y(accepted.Vectors.rows(), p);
+  Y.leftCols(fromAccepted) = accepted.Vectors.middleCols(first, fromAccepted);
+  Y.rightCols(band.Values.size()) = band.Vectors;
+
+  DenseMatrix G = Y.transpose() * (M * Y);
+  DenseMatrix S = Y.transpose() * (L * Y);
+  G = 0.5 * (G + G.transpose()).eval();
+  S = 0.5 * (S + S.transpose()).eval();
+
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> gram(G);
+  const Vector& g = gram.eigenvalues();
+  const double keep = 1e-8 * g.maxCoeff();
+  std::vector<int> columns;
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+  {
+    if (g[i] > keep)
+    {
+      columns.push_back(static_cast<int>(i));
+    }
+  }
+  DenseMatrix C1(p, columns.size());
+  for (std::size_t j = 0; j < columns.size(); ++j)
+  {
+    C1.col(j) = gram.eigenvectors().col(columns[j]) / std::sqrt(g[columns[j]]);
+  }
+  DenseMatrix T = C1.transpose() * S * C1;
+  T = 0.5 * (T + T.transpose()).eval();
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> ritz(T);
+  const DenseMatrix Z = Y * (C1 * ritz.eigenvectors());
+
+  const Eigen::Index total = first + Z.cols();
+  if (accepted.Vectors.cols() < total)
+  {
+    accepted.Vectors.conservativeResize(Eigen::NoChange, total + band.Values.size());
+  }
+  accepted.Vectors.middleCols(first, Z.cols()) = Z;
+  accepted.Values.resize(first);
+  for (Eigen::Index i = 0; i < Z.cols(); ++i)
+  {
+    accepted.Values.push_back(ritz.eigenvalues()[i]);
+  }
+}
+
+/// Sizes of the band-by-band iteration.
+int DefaultBandSize(int m)
+{
+  return std::max(50, std::min(160, m));
+}
+
+/// All eigenpairs of the dense pencil, then the m smallest.
+EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int m)
+{
+  const DenseMatrix Ld(L);
+  const DenseMatrix Md(M);
+  Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> solver(Ld, Md);
+  if (solver.info() != Eigen::Success)
+  {
+    throw SolverFailure("the dense generalized eigensolver failed (is the mass matrix positive "
+                        "definite?)");
+  }
+  EigenResult result;
+  result.Eigenvalues = solver.eigenvalues().head(m);
+  result.Eigenvectors = solver.eigenvectors().leftCols(m);
+  return result;
+}
+
+/// The band-by-band shift-invert Lanczos iteration (see the file documentation).
+EigenResult BandEigenpairs(
+  const SparseMatrix& L, const SparseMatrix& M, const EigenOptions& options, const Monitor& monitor)
+{
+  const Eigen::Index n = L.rows();
+  const int m = options.NumberOfEigenpairs;
+  const int bandSize = options.BandSize > 0 ? options.BandSize : DefaultBandSize(m);
+  const int nev = static_cast<int>(std::min<Eigen::Index>(std::min(bandSize, m + m / 4 + 10), n / 2));
+
+  EigenResult result;
+  Clock::time_point start = Clock::now();
+  ShiftedFactor factor(L, M);
+  result.Seconds.Factorization += SecondsSince(start);
+  const ShiftInvertOp op(factor, monitor, n);
+  const MassOp mass(M);
+
+  // A shift below zero keeps L - sigma M positive definite for the first band. Too near zero it
+  // would make the null space dominate the operator by orders of magnitude and cost accuracy
+  // elsewhere; 1 / area is below the first non-zero eigenvalue of most shapes (8 pi / area on
+  // a sphere) and keeps the two of similar size.
+  const double area = M.sum();
+  const double scale = L.diagonal().sum() / area;
+  const double firstShift = -1.0 / area;
+  double sigma = firstShift;
+  // Every eigenvalue below `proven` is accepted: an inertia count says so. The bands claim the
+  // same up to `complete`; the part above `proven` is proven by the next inertia count.
+  double proven = -std::numeric_limits<double>::infinity();
+  double complete = proven;
+  double radius = 0.0;
+  double reference = 0.0; // the first non-zero eigenvalue, once known
+  Accepted accepted;
+  accepted.Vectors.resize(n, m + 2 * nev);
+  int attempt = 0;
+  int gaps = 0;
+
+  // After an inertia count disagrees: forget what is not proven and retry with more effort.
+  auto rollBack = [&](const std::string& what) {
+    if (++attempt > 3)
+    {
+      throw SolverFailure(what, accepted.CountBelow(proven));
+    }
+    accepted.Values.resize(accepted.CountBelow(proven));
+    complete = proven;
+    sigma = std::isfinite(proven) ? proven + 0.5 * radius : firstShift;
+  };
+
+  while (true)
+  {
+    monitor.ThrowIfCancelled();
+    start = Clock::now();
+    if (accepted.CountBelow(complete) > m)
+    {
+      // Inertia just above the m-th eigenvalue (past any multiplet) proves the top.
+      int j = m;
+      while (j < accepted.CountBelow(complete) &&
+        !(accepted.Values[j] - accepted.Values[j - 1] > 1e-9 * std::abs(accepted.Values[j])))
+      {
+        ++j;
+      }
+      if (j < accepted.CountBelow(complete))
+      {
+        const double tau = 0.5 * (accepted.Values[j - 1] + accepted.Values[j]);
+        if (tau <= proven)
+        {
+          break;
+        }
+        if (factor.Factor(tau))
+        {
+          ++result.Factorizations;
+          if (factor.NegativePivots() == j)
+          {
+            result.Seconds.Verification += SecondsSince(start);
+            break;
+          }
+          rollBack("the inertia of L - sigma M at " + Str(tau) + " counts " +
+            std::to_string(factor.NegativePivots()) + " eigenvalues below it, the bands found " +
+            std::to_string(j));
+          result.Seconds.Verification += SecondsSince(start);
+          continue;
+        }
+        if (++gaps > 8)
+        {
+          throw SolverFailure("the LDL^T factorization of L - sigma M failed at " + Str(tau),
+            accepted.CountBelow(proven));
+        }
+      }
+    }
+
+    if (!factor.Factor(sigma))
+    {
+      // sigma hit an eigenvalue to working precision: nudge it.
+      sigma += 1e-7 * std::max(std::abs(sigma), scale / static_cast<double>(n));
+      if (++gaps > 8)
+      {
+        throw SolverFailure("the LDL^T factorization of L - sigma M failed at shift " + Str(sigma),
+          accepted.CountBelow(proven));
+      }
+      continue;
+    }
+    ++result.Factorizations;
+    result.Seconds.Factorization += SecondsSince(start);
+
+    start = Clock::now();
+    Band band;
+    if (options.Method == LanczosMethod::Spectra)
+    {
+      band = RunBand(op, mass, sigma, nev, attempt, options);
+      result.Seconds.Solve += SecondsSince(start);
+    }
+    else
+    {
+      band = RunBlockBand(factor, M, sigma, nev, attempt, reference, options, monitor, result);
+    }
+    ++result.Bands;
+
+    start = Clock::now();
+    radius = std::max(std::abs(band.Values[0] - sigma),
+      std::abs(band.Values[band.Values.size() - 1] - sigma));
+    const double slack = 1e-8 * std::max(std::abs(sigma), radius);
+    const double low = sigma - radius + slack;
+    const double high = sigma + radius - slack;
+    if (low >= complete && std::isfinite(complete))
+    {
+      // The band does not reach down to what is known: move the shift closer and try again.
+      sigma = complete + 0.5 * (sigma - complete);
+      if (++gaps > 8)
+      {
+        throw SolverFailure(
+          "the bands do not overlap near " + Str(complete), accepted.CountBelow(proven));
+      }
+      continue;
+    }
+
+    Band trusted;
+    std::vector<int> keep;
+    for (Eigen::Index i = 0; i < band.Values.size(); ++i)
+    {
+      if (band.Values[i] > low && band.Values[i] < high)
+      {
+        keep.push_back(static_cast<int>(i));
+      }
+    }
+    trusted.Values.resize(keep.size());
+    trusted.Vectors.resize(n, keep.size());
+    int belowShift = accepted.CountBelow(low);
+    for (std::size_t i = 0; i < keep.size(); ++i)
+    {
+      trusted.Values[i] = band.Values[keep[i]];
+      trusted.Vectors.col(i) = band.Vectors.col(keep[i]);
+      belowShift += (trusted.Values[i] < sigma) ? 1 : 0;
+    }
+    if (belowShift != factor.NegativePivots())
+    {
+      // Sylvester's inertia: this band, or the unproven top of the one before, missed or invented
+      // eigenvalues below the shift.
+      rollBack("the band at shift " + Str(sigma) + " found " + std::to_string(belowShift) +
+        " eigenvalues below the shift, but the inertia of L - sigma M counts " +
+        std::to_string(factor.NegativePivots()));
+      result.Seconds.Verification += SecondsSince(start);
+      continue;
+    }
+    proven = sigma;
+    attempt = 0;
+    if (!(reference > 0.0))
+    {
+      const double top = std::abs(trusted.Values[trusted.Values.size() - 1]);
+      for (Eigen::Index i = 0; i < trusted.Values.size(); ++i)
+      {
+        if (std::abs(trusted.Values[i]) > 1e-6 * top)
+        {
+          reference = std::abs(trusted.Values[i]);
+          break;
+        }
+      }
+    }
+    gaps = 0;
+    Merge(accepted, trusted, low - 0.25 * radius, L, M);
+    complete = high;
+    result.Seconds.RayleighRitz += SecondsSince(start);
+    monitor.Report(std::min(1.0, static_cast<double>(accepted.CountBelow(complete)) / m));
+
+    // Weyl's law makes the eigenvalue density nearly constant: size the next band from this one.
+    const double spread = band.Values[band.Values.size() - 1] - std::max(0.0, band.Values[0]);
+    const double density = static_cast<double>(band.Values.size()) / std::max(spread, slack);
+    sigma = complete + 0.75 * static_cast<double>(band.Values.size()) / (2.0 * density);
+  }
+
+  result.Eigenvalues = Eigen::Map<const Vector>(accepted.Values.data(), m);
+  result.Eigenvectors = accepted.Vectors.leftCols(m);
+  return result;
+}
+
+/// Make the entry of largest magnitude of every column positive.
+void NormalizeSigns(DenseMatrix& Phi)
+{
+  for (Eigen::Index k = 0; k < Phi.cols(); ++k)
+  {
+    Eigen::Index row = 0;
+    Phi.col(k).cwiseAbs().maxCoeff(&row);
+    if (Phi(row, k) < 0.0)
+    {
+      Phi.col(k) *= -1.0;
+    }
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+EigenResult SmallestEigenpairs(
+  const SparseMatrix& L, const SparseMatrix& M, const EigenOptions& options, const Monitor& monitor)
+{
+  const Eigen::Index n = L.rows();
+  const int m = options.NumberOfEigenpairs;
+  if (L.cols() != n || M.rows() != n || M.cols() != n)
+  {
+    throw InvalidInput("the stiffness and mass matrices must be square and of the same size");
+  }
+  if (m < 1 || m > n)
+  {
+    throw InvalidInput("cannot compute " + std::to_string(m) + " eigenpairs of a problem with " +
+      std::to_string(n) + " unknowns: ask for 1 to " + std::to_string(n));
+  }
+  monitor.Report(0.0);
+  EigenResult result;
+  if (n <= options.DenseThreshold || 3 * static_cast<Eigen::Index>(m) > n)
+  {
+    if (n > 20000)
+    {
+      throw InvalidInput("asking for " + std::to_string(m) + " eigenpairs of " +
+        std::to_string(n) + " unknowns needs a dense solve; ask for at most n/3");
+    }
+    monitor.ThrowIfCancelled();
+    const Clock::time_point start = Clock::now();
+    result = DenseEigenpairs(L, M, m);
+    result.Seconds.RayleighRitz = SecondsSince(start);
+  }
+  else
+  {
+    result = BandEigenpairs(L, M, options, monitor);
+  }
+  NormalizeSigns(result.Eigenvectors);
+
+  const Clock::time_point start = Clock::now();
+  const Vector residuals = RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors);
+  result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
+  result.Seconds.Verification += SecondsSince(start);
+  if (!(result.MaxResidual <= options.ResidualTolerance))
+  {
+    Eigen::Index worst = 0;
+    residuals.maxCoeff(&worst);
+    throw SolverFailure("eigenpair " + std::to_string(worst) + " (lambda = " +
+        Str(result.Eigenvalues[worst]) + ") has relative residual " + Str(result.MaxResidual) +
+        ", above the tolerance " + Str(options.ResidualTolerance),
+      m);
+  }
+  monitor.Report(1.0);
+  return result;
+}
+
+//------------------------------------------------------------------------------
+Vector RelativeResiduals(
+  const SparseMatrix& L, const SparseMatrix& M, const Vector& lambda, const DenseMatrix& Phi)
+{
+  const Vector rowSums = M * Vector::Ones(M.cols());
+  const Vector inverseMass = rowSums.cwiseInverse();
+  const double top = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  double reference = top;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    if (std::abs(lambda[k]) > 1e-6 * top)
+    {
+      reference = std::min(reference, std::abs(lambda[k]));
+    }
+  }
+  const DenseMatrix R = L * Phi - (M * Phi) * lambda.asDiagonal();
+  Vector out(lambda.size());
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    const double norm = std::sqrt(R.col(k).cwiseAbs2().dot(inverseMass));
+    out[k] = norm / std::max({ std::abs(lambda[k]), reference,
+                      std::numeric_limits<double>::min() });
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
+{
+  const DenseMatrix G = Phi.transpose() * (M * Phi);
+  return (G - DenseMatrix::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
+}
+
+//------------------------------------------------------------------------------
+int CountEigenvaluesBelow(const SparseMatrix& L, const SparseMatrix& M, double sigma)
+{
+  ShiftedFactor factor(L, M);
+  if (!factor.Factor(sigma))
+  {
+    throw SolverFailure("the LDL^T factorization of L - sigma M failed at shift " + Str(sigma));
+  }
+  return factor.NegativePivots();
+}
+} // namespace spectral

@@ -1,0 +1,124 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file EigenSolver.h
+ * @brief The smallest eigenpairs of a generalized symmetric problem L h = lambda M h, band by band.
+ *
+ * The band-by-band shift-invert strategy follows B. Vallet and B. Levy, "Spectral Geometry
+ * Processing with Manifold Harmonics" (2008), section 4: each band factors L - sigma M once with
+ * CHOLMOD's LDL^T (T. Davis, SuiteSparse) and runs Spectra's implicitly restarted Lanczos on
+ * (L - sigma M)^-1 M in the M inner product. Consecutive bands overlap; where they meet, the
+ * vectors of both bands are merged by a Rayleigh-Ritz step on their joint span, so membership is
+ * decided by M-orthogonality (rank), never by comparing eigenvalues. Sylvester's law of inertia
+ * (the negative pivots of each LDL^T) proves that no eigenvalue below each shift was lost.
+ *
+ * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestEigenSolver.cxx.
+ */
+#ifndef spectral_EigenSolver_h
+#define spectral_EigenSolver_h
+
+#include "Mesh.h"
+#include "Monitor.h"
+
+namespace spectral
+{
+/// The Lanczos iteration run within each band.
+enum class LanczosMethod
+{
+  /// Block Lanczos with thick restarts and full reorthogonalization by matrix products (default).
+  Block,
+  /// Spectra's implicitly restarted Lanczos (SymGEigsShiftSolver), one vector at a time.
+  Spectra
+};
+
+/// Settings of SmallestEigenpairs. The defaults suit meshes from 10^3 to 10^6 points.
+struct EigenOptions
+{
+  /// m, the number of eigenpairs wanted (1 <= m <= n).
+  int NumberOfEigenpairs = 100;
+  /// Eigenpairs requested per band; 0 chooses automatically (about 100).
+  int BandSize = 0;
+  /// Relative convergence tolerance of the Lanczos iteration within a band.
+  double Tolerance = 1e-11;
+  /// Maximum number of Lanczos restarts within a band.
+  int MaxIterations = 1000;
+  /// Largest relative residual a returned pair may have (see RelativeResiduals).
+  double ResidualTolerance = 1e-8;
+  /// Problems with at most this many unknowns (or with m > n / 3) are solved densely.
+  int DenseThreshold = 1000;
+  /// The iteration within each band.
+  LanczosMethod Method = LanczosMethod::Block;
+};
+
+/// Seconds spent in each stage of SmallestEigenpairs.
+struct EigenTimings
+{
+  /// Symbolic analysis and LDL^T factorizations of L - sigma M.
+  double Factorization = 0.0;
+  /// Triangular solves: applications of (L - sigma M)^-1 M.
+  double Solve = 0.0;
+  /// Reorthogonalization and normalization of the Krylov blocks.
+  double Orthogonalization = 0.0;
+  /// Ritz values and vectors, restarts and the merging of bands.
+  double RayleighRitz = 0.0;
+  /// Inertia checks and residuals.
+  double Verification = 0.0;
+};
+
+/// The result of SmallestEigenpairs.
+struct EigenResult
+{
+  /// m eigenvalues, ascending.
+  Vector Eigenvalues;
+  /// n by m, column k is the eigenvector of Eigenvalues[k]; M-orthonormal; the entry of largest
+  /// magnitude of each column is positive.
+  DenseMatrix Eigenvectors;
+  /// Largest entry of RelativeResiduals over the returned pairs.
+  double MaxResidual = 0.0;
+  /// Number of bands (shift-invert Lanczos runs), 0 for the dense path.
+  int Bands = 0;
+  /// Number of LDL^T factorizations (bands, retries and the final inertia check).
+  int Factorizations = 0;
+  /// Number of vectors to which (L - sigma M)^-1 M was applied.
+  long long OperatorApplications = 0;
+  EigenTimings Seconds;
+};
+
+/**
+ * The m smallest eigenpairs of L h = lambda M h.
+ *
+ * \param L n by n, sparse, symmetric positive semi-definite (e.g. CotanStiffness).
+ * \param M n by n, sparse, symmetric positive definite (e.g. Diagonal(LumpedMass) or
+ *          ConsistentMass), with a pattern contained in that of L plus the diagonal.
+ * \param options m, band size, tolerances.
+ * \param monitor progress in [0, 1] and cancellation, polled inside every operator application.
+ * \return Eigenvalues ascending, eigenvectors M-orthonormal with a deterministic sign.
+ * \throws InvalidInput if the sizes disagree or m is not in [1, n].
+ * \throws SolverFailure if a band does not converge, a factorization fails, an inertia count
+ *         disagrees with the eigenvalues found, or a residual exceeds ResidualTolerance.
+ * \throws Cancelled if monitor.Cancelled returned true.
+ */
+EigenResult SmallestEigenpairs(const SparseMatrix& L, const SparseMatrix& M,
+  const EigenOptions& options, const Monitor& monitor = Monitor());
+
+/**
+ * Relative residuals of eigenpairs: for each k,
+ * ||L h_k - lambda_k M h_k||_{D^-1} / max(|lambda_k|, lambda_ref), where D holds the row sums of
+ * M and lambda_ref is the smallest |lambda| that exceeds 1e-6 of the largest (the first non-zero
+ * frequency), so that zero eigenvalues are measured against the scale of the spectrum.
+ */
+Vector RelativeResiduals(
+  const SparseMatrix& L, const SparseMatrix& M, const Vector& lambda, const DenseMatrix& Phi);
+
+/// max |Phi^T M Phi - I| over all entries.
+double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M);
+
+/**
+ * Number of eigenvalues of L h = lambda M h below sigma, from the inertia of an LDL^T
+ * factorization of L - sigma M (Sylvester's law of inertia).
+ * \throws SolverFailure if the factorization fails (sigma is an eigenvalue).
+ */
+int CountEigenvaluesBelow(const SparseMatrix& L, const SparseMatrix& M, double sigma);
+} // namespace spectral
+
+#endif

@@ -1,0 +1,260 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Operators.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+namespace spectral
+{
+namespace
+{
+using Point = Eigen::Vector3d;
+
+Point Corner(const TriangleMesh& mesh, int f, int c)
+{
+  return mesh.Vertices.row(mesh.Faces(f, c)).transpose();
+}
+
+/// Twice the area of triangle f.
+double DoubleArea(const TriangleMesh& mesh, int f)
+{
+  const Point a = Corner(mesh, f, 0);
+  return (Corner(mesh, f, 1) - a).cross(Corner(mesh, f, 2) - a).norm();
+}
+
+bool IsDegenerate(const TriangleMesh& mesh, int f)
+{
+  const Point a = Corner(mesh, f, 0);
+  const Point b = Corner(mesh, f, 1);
+  const Point c = Corner(mesh, f, 2);
+  const double longest =
+    std::max({ (b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm() });
+  const double doubleArea = (b - a).cross(c - a).norm();
+  return !(doubleArea > 1e-12 * longest);
+}
+
+/// Union-find root with path halving.
+int Root(std::vector<int>& parent, int i)
+{
+  while (parent[i] != i)
+  {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+PreparedMesh PrepareMesh(const TriangleMesh& input)
+{
+  const int numPts = static_cast<int>(input.Vertices.rows());
+  const int numTris = static_cast<int>(input.Faces.rows());
+  for (int f = 0; f < numTris; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int id = input.Faces(f, c);
+      if (id < 0 || id >= numPts)
+      {
+        throw InvalidInput("triangle " + std::to_string(f) + " refers to point " +
+          std::to_string(id) + " but the mesh has " + std::to_string(numPts) + " points");
+      }
+      if (!input.Vertices.row(id).allFinite())
+      {
+        throw InvalidInput("point " + std::to_string(id) +
+          " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
+      }
+    }
+  }
+
+  PreparedMesh out;
+  std::vector<int> compact(numPts, -1);
+  std::vector<int> kept;
+  kept.reserve(numTris);
+  for (int f = 0; f < numTris; ++f)
+  {
+    if (IsDegenerate(input, f))
+    {
+      ++out.DegenerateTriangles;
+      continue;
+    }
+    kept.push_back(f);
+    for (int c = 0; c < 3; ++c)
+    {
+      compact[input.Faces(f, c)] = 0;
+    }
+  }
+  for (int i = 0; i < numPts; ++i)
+  {
+    if (compact[i] == 0)
+    {
+      compact[i] = static_cast<int>(out.InputPointIds.size());
+      out.InputPointIds.push_back(i);
+    }
+  }
+  out.UnusedPoints = numPts - static_cast<int>(out.InputPointIds.size());
+
+  out.Mesh.Vertices.resize(static_cast<Eigen::Index>(out.InputPointIds.size()), 3);
+  for (std::size_t i = 0; i < out.InputPointIds.size(); ++i)
+  {
+    out.Mesh.Vertices.row(static_cast<Eigen::Index>(i)) = input.Vertices.row(out.InputPointIds[i]);
+  }
+  out.Mesh.Faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t t = 0; t < kept.size(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Mesh.Faces(static_cast<Eigen::Index>(t), c) = compact[input.Faces(kept[t], c)];
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix CotanStiffness(const TriangleMesh& mesh)
+{
+  const Eigen::Index n = mesh.Vertices.rows();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 12 + n);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
+  }
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    if (IsDegenerate(mesh, f))
+    {
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      // Corner c is opposite the edge (i, j).
+      const int k = mesh.Faces(f, c);
+      const int i = mesh.Faces(f, (c + 1) % 3);
+      const int j = mesh.Faces(f, (c + 2) % 3);
+      const Point u = mesh.Vertices.row(i).transpose() - mesh.Vertices.row(k).transpose();
+      const Point v = mesh.Vertices.row(j).transpose() - mesh.Vertices.row(k).transpose();
+      const double halfCot = 0.5 * u.dot(v) / u.cross(v).norm();
+      triplets.emplace_back(i, j, -halfCot);
+      triplets.emplace_back(j, i, -halfCot);
+      triplets.emplace_back(i, i, halfCot);
+      triplets.emplace_back(j, j, halfCot);
+    }
+  }
+  SparseMatrix Q(n, n);
+  Q.setFromTriplets(triplets.begin(), triplets.end());
+  Q.makeCompressed();
+  return Q;
+}
+
+//------------------------------------------------------------------------------
+Vector LumpedMass(const TriangleMesh& mesh)
+{
+  Vector d = Vector::Zero(mesh.Vertices.rows());
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    const double third = DoubleArea(mesh, f) / 6.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      d[mesh.Faces(f, c)] += third;
+    }
+  }
+  return d;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix ConsistentMass(const TriangleMesh& mesh)
+{
+  const Eigen::Index n = mesh.Vertices.rows();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 9 + n);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
+  }
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    const double area = 0.5 * DoubleArea(mesh, f);
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        triplets.emplace_back(
+          mesh.Faces(f, a), mesh.Faces(f, b), area * (a == b ? 1.0 / 6.0 : 1.0 / 12.0));
+      }
+    }
+  }
+  SparseMatrix B(n, n);
+  B.setFromTriplets(triplets.begin(), triplets.end());
+  B.makeCompressed();
+  return B;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix Diagonal(const Vector& d)
+{
+  SparseMatrix D(d.size(), d.size());
+  D.reserve(Eigen::VectorXi::Ones(d.size()));
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+  {
+    D.insert(i, i) = d[i];
+  }
+  D.makeCompressed();
+  return D;
+}
+
+//------------------------------------------------------------------------------
+double SurfaceArea(const TriangleMesh& mesh)
+{
+  double area = 0.0;
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    area += 0.5 * DoubleArea(mesh, f);
+  }
+  return area;
+}
+
+//------------------------------------------------------------------------------
+int ConnectedComponents(const TriangleMesh& mesh)
+{
+  const int n = static_cast<int>(mesh.Vertices.rows());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    const int r0 = Root(parent, mesh.Faces(f, 0));
+    parent[Root(parent, mesh.Faces(f, 1))] = r0;
+    parent[Root(parent, mesh.Faces(f, 2))] = r0;
+  }
+  int count = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    count += (Root(parent, i) == i) ? 1 : 0;
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
+double MeanEdgeLength(const TriangleMesh& mesh)
+{
+  if (mesh.Faces.rows() == 0)
+  {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sum += (Corner(mesh, f, (c + 1) % 3) - Corner(mesh, f, c)).norm();
+    }
+  }
+  return sum / (3.0 * static_cast<double>(mesh.Faces.rows()));
+}
+} // namespace spectral

@@ -1,0 +1,81 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Operators.h
+ * @brief Discrete Laplace-Beltrami operators of a triangle mesh: cotan stiffness and mass.
+ *
+ * The generalized eigenproblem L h = lambda M h of these matrices defines the manifold harmonics
+ * (B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics", Computer Graphics
+ * Forum 27(2), 2008). Natural (Neumann) boundary conditions hold on open boundaries.
+ *
+ * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestOperators.cxx.
+ */
+#ifndef spectral_Operators_h
+#define spectral_Operators_h
+
+#include "Mesh.h"
+
+#include <vector>
+
+namespace spectral
+{
+/// The part of a mesh that the operators are built on, and how it maps to the input.
+struct PreparedMesh
+{
+  /// Triangles of non-zero area, on the points they use, renumbered 0..#used-1.
+  TriangleMesh Mesh;
+  /// For each point of Mesh, its index in the input mesh.
+  std::vector<int> InputPointIds;
+  /// Input triangles left out because their area is numerically zero.
+  int DegenerateTriangles = 0;
+  /// Input points that no remaining triangle uses (their harmonics are zero).
+  int UnusedPoints = 0;
+};
+
+/**
+ * Keep the triangles with non-zero area and the points they use.
+ *
+ * A triangle is degenerate when twice its area is below 1e-12 times its longest edge squared
+ * (zero-area triangles, repeated points, collinear corners). Degenerate triangles carry no
+ * stiffness and no mass, so they are left out rather than turned into infinite cotangents.
+ *
+ * \param input Points and triangles; indices must lie in [0, #V).
+ * \return The compact mesh with the map back to input point ids.
+ * \throws InvalidInput for an index out of range or a non-finite coordinate on a used point.
+ */
+PreparedMesh PrepareMesh(const TriangleMesh& input);
+
+/**
+ * Cotangent stiffness matrix Q (#V by #V, sparse, symmetric, positive semi-definite).
+ *
+ * Q_ij = -(cot a_ij + cot b_ij) / 2 for an edge ij with opposite angles a_ij and b_ij
+ * (one angle on a boundary edge), Q_ii = -sum_j Q_ij, so Q 1 = 0. Cotangents come from edge
+ * vectors (cot = u.v / |u x v|); degenerate triangles contribute nothing. The diagonal is stored
+ * even where it is zero, so every Q has the pattern of the mesh graph plus the diagonal.
+ */
+SparseMatrix CotanStiffness(const TriangleMesh& mesh);
+
+/// Lumped (barycentric) mass: D_ii = sum of |t|/3 over the triangles t around point i. Length #V.
+Vector LumpedMass(const TriangleMesh& mesh);
+
+/**
+ * Consistent (Galerkin) mass matrix B (#V by #V, sparse, symmetric positive definite on used
+ * points): B_ij = sum |t|/12 over triangles t with edge ij, B_ii = sum |t|/6 over t around i.
+ * Its row sums equal LumpedMass.
+ */
+SparseMatrix ConsistentMass(const TriangleMesh& mesh);
+
+/// The diagonal matrix diag(d) in sparse form.
+SparseMatrix Diagonal(const Vector& d);
+
+/// Total area of the triangles.
+double SurfaceArea(const TriangleMesh& mesh);
+
+/// Number of connected components (points joined by triangle edges; isolated points count too).
+int ConnectedComponents(const TriangleMesh& mesh);
+
+/// Mean edge length over all triangle edges (each interior edge counted twice). 0 for no triangles.
+double MeanEdgeLength(const TriangleMesh& mesh);
+} // namespace spectral
+
+#endif

@@ -1,0 +1,368 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Transfer.h"
+
+#include "Operators.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace spectral
+{
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+std::string Str(double value)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
+  return buffer;
+}
+
+void Require(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    throw InvalidInput(what);
+  }
+}
+
+/// Validate the fields of p that its Kind uses.
+void Validate(const FilterParameters& p)
+{
+  switch (p.Kind)
+  {
+    case FilterKind::BandPass:
+    case FilterKind::BandStop:
+    case FilterKind::BandExaggeration:
+      Require(std::isfinite(p.UpperCutoff) && p.UpperCutoff >= p.Cutoff,
+        "the upper cutoff (" + Str(p.UpperCutoff) + ") must be finite and >= the cutoff (" +
+          Str(p.Cutoff) + ")");
+      [[fallthrough]];
+    case FilterKind::LowPass:
+    case FilterKind::HighPass:
+    case FilterKind::Enhancement:
+      Require(std::isfinite(p.Cutoff) && p.Cutoff >= 0.0,
+        "the cutoff frequency must be finite and >= 0, not " + Str(p.Cutoff));
+      Require(std::isfinite(p.Transition) && p.Transition >= 0.0,
+        "the transition width must be finite and >= 0, not " + Str(p.Transition));
+      Require(std::isfinite(p.Gain), "the gain must be finite");
+      break;
+    case FilterKind::HeatDiffusion:
+      Require(std::isfinite(p.Time) && p.Time >= 0.0,
+        "the diffusion time must be finite and >= 0, not " + Str(p.Time));
+      break;
+    case FilterKind::Custom:
+      Require(!p.ControlPoints.empty(), "a custom filter needs at least one control point");
+      for (std::size_t i = 0; i < p.ControlPoints.size(); ++i)
+      {
+        Require(std::isfinite(p.ControlPoints[i].first) && std::isfinite(p.ControlPoints[i].second),
+          "control point " + std::to_string(i) + " is not finite");
+        Require(i == 0 || p.ControlPoints[i].first > p.ControlPoints[i - 1].first,
+          "the frequencies of the control points must be strictly increasing (point " +
+            std::to_string(i) + ")");
+      }
+      break;
+    default:
+      throw InvalidInput("unknown filter kind " + std::to_string(static_cast<int>(p.Kind)));
+  }
+}
+
+/// Smooth step from 0 to 1: a raised cosine over [c (1 - w/2), c (1 + w/2)]; omega > c if sharp.
+double Rise(double omega, double c, double w)
+{
+  const double a = c * (1.0 - 0.5 * w);
+  const double b = c * (1.0 + 0.5 * w);
+  if (!(b > a))
+  {
+    return omega > c ? 1.0 : 0.0;
+  }
+  if (omega <= a)
+  {
+    return 0.0;
+  }
+  if (omega >= b)
+  {
+    return 1.0;
+  }
+  return 0.5 - 0.5 * std::cos(Pi * (omega - a) / (b - a));
+}
+
+double InsideBand(const FilterParameters& p, double omega)
+{
+  return Rise(omega, p.Cutoff, p.Transition) * (1.0 - Rise(omega, p.UpperCutoff, p.Transition));
+}
+
+double Interpolate(const std::vector<std::pair<double, double>>& points, double omega)
+{
+  if (omega <= points.front().first)
+  {
+    return points.front().second;
+  }
+  if (omega >= points.back().first)
+  {
+    return points.back().second;
+  }
+  const auto upper = std::upper_bound(points.begin(), points.end(), omega,
+    [](double w, const std::pair<double, double>& point) { return w < point.first; });
+  const auto lower = upper - 1;
+  const double s = (omega - lower->first) / (upper->first - lower->first);
+  return (1.0 - s) * lower->second + s * upper->second;
+}
+
+/// F(omega) for validated parameters.
+double Evaluate(const FilterParameters& p, double omega)
+{
+  switch (p.Kind)
+  {
+    case FilterKind::LowPass:
+      return 1.0 - Rise(omega, p.Cutoff, p.Transition);
+    case FilterKind::HighPass:
+      return Rise(omega, p.Cutoff, p.Transition);
+    case FilterKind::BandPass:
+      return InsideBand(p, omega);
+    case FilterKind::BandStop:
+      return 1.0 - InsideBand(p, omega);
+    case FilterKind::Enhancement:
+      return 1.0 + (p.Gain - 1.0) * Rise(omega, p.Cutoff, p.Transition);
+    case FilterKind::BandExaggeration:
+      return 1.0 + (p.Gain - 1.0) * InsideBand(p, omega);
+    case FilterKind::HeatDiffusion:
+      return std::exp(-p.Time * omega * omega);
+    case FilterKind::Custom:
+      return Interpolate(p.ControlPoints, omega);
+  }
+  return 0.0;
+}
+
+void RequireFrequency(double omega)
+{
+  Require(std::isfinite(omega) && omega >= 0.0,
+    "a frequency must be finite and >= 0, not " + Str(omega));
+}
+
+/// Where F or one of its derivatives may jump: the ends of every step, the control points.
+std::vector<double> Breakpoints(const FilterParameters& p)
+{
+  std::vector<double> out;
+  auto addStep = [&p, &out](double c) {
+    out.push_back(c * (1.0 - 0.5 * p.Transition));
+    out.push_back(c);
+    out.push_back(c * (1.0 + 0.5 * p.Transition));
+  };
+  switch (p.Kind)
+  {
+    case FilterKind::BandPass:
+    case FilterKind::BandStop:
+    case FilterKind::BandExaggeration:
+      addStep(p.UpperCutoff);
+      addStep(p.Cutoff);
+      break;
+    case FilterKind::LowPass:
+    case FilterKind::HighPass:
+    case FilterKind::Enhancement:
+      addStep(p.Cutoff);
+      break;
+    case FilterKind::Custom:
+      for (const auto& point : p.ControlPoints)
+      {
+        out.push_back(point.first);
+      }
+      break;
+    default:
+      break;
+  }
+  return out;
+}
+
+/// Nodes and weights of the 10-point Gauss-Legendre rule on [-1, 1] (exact to degree 19).
+struct GaussLegendre
+{
+  static constexpr int Order = 10;
+  std::array<double, Order> Nodes;
+  std::array<double, Order> Weights;
+
+  GaussLegendre()
+  {
+    for (int i = 0; i < Order; ++i)
+    {
+      // Newton's iteration on P_n from the Chebyshev-like guess of the i-th root.
+      double x = std::cos(Pi * (i + 0.75) / (Order + 0.5));
+      double derivative = 1.0;
+      for (int iteration = 0; iteration < 100; ++iteration)
+      {
+        double p0 = 1.0;
+        double p1 = x;
+        for (int k = 2; k <= Order; ++k)
+        {
+          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        derivative = Order * (x * p1 - p0) / (x * x - 1.0);
+        const double step = p1 / derivative;
+        x -= step;
+        if (std::abs(step) < 1e-16)
+        {
+          break;
+        }
+      }
+      this->Nodes[i] = x;
+      this->Weights[i] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+    }
+  }
+};
+
+/**
+ * Rows of the basis per block product: about 256 KB of H, so that the BLAS packs each block
+ * while it is in cache and the whole product reads H from memory once.
+ */
+Eigen::Index BlockRows(Eigen::Index m)
+{
+  return std::max<Eigen::Index>(16, 32768 / std::max<Eigen::Index>(m, 1));
+}
+
+double Integrate(const FilterParameters& p, double a, double b)
+{
+  static const GaussLegendre rule;
+  const double half = 0.5 * (b - a);
+  const double mid = 0.5 * (a + b);
+  double sum = 0.0;
+  for (int i = 0; i < GaussLegendre::Order; ++i)
+  {
+    sum += rule.Weights[i] * Evaluate(p, mid + half * rule.Nodes[i]);
+  }
+  return half * sum;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+RowMatrix ForwardTransform(const BasisView& H, const Vector& mass, const ConstRowView& X)
+{
+  Require(mass.size() == H.rows() && X.rows() == H.rows(),
+    "the basis has " + std::to_string(H.rows()) + " points, the mass " +
+      std::to_string(mass.size()) + " and the signal " + std::to_string(X.rows()));
+  const RowMatrix weighted = mass.asDiagonal() * X;
+  RowMatrix coefficients = RowMatrix::Zero(H.cols(), X.cols());
+  const Eigen::Index block = BlockRows(H.cols());
+  for (Eigen::Index i = 0; i < H.rows(); i += block)
+  {
+    const Eigen::Index rows = std::min(block, H.rows() - i);
+    coefficients.noalias() += H.middleRows(i, rows).transpose() * weighted.middleRows(i, rows);
+  }
+  return coefficients;
+}
+
+//------------------------------------------------------------------------------
+RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain)
+{
+  const Eigen::Index n = H.rows();
+  const Eigen::Index c = coefficients.cols();
+  Require(gains.size() == H.cols() && coefficients.rows() == H.cols(),
+    "the basis has " + std::to_string(H.cols()) + " harmonics, the gains " +
+      std::to_string(gains.size()) + " and the coefficients " +
+      std::to_string(coefficients.rows()));
+  Require(std::isfinite(hfGain), "the high-frequency gain must be finite");
+  Require(X.rows() != 0 || hfGain == 0.0 || n == 0,
+    "re-injecting high frequencies (gain " + Str(hfGain) + ") needs the original signal");
+  Require(X.rows() == 0 || (X.rows() == n && X.cols() == c),
+    "the original signal is " + std::to_string(X.rows()) + " by " + std::to_string(X.cols()) +
+      ", expected " + std::to_string(n) + " by " + std::to_string(c));
+
+  // Y = H diag(gains - hf) X~ + hf X: one pass over H, block by block.
+  const RowMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
+  RowMatrix Y(n, c);
+  if (hfGain != 0.0)
+  {
+    Y = hfGain * X;
+  }
+  else
+  {
+    Y.setZero();
+  }
+  const Eigen::Index block = BlockRows(H.cols());
+  for (Eigen::Index i = 0; i < n; i += block)
+  {
+    const Eigen::Index rows = std::min(block, n - i);
+    Y.middleRows(i, rows).noalias() += H.middleRows(i, rows) * scaled;
+  }
+  return Y;
+}
+
+//------------------------------------------------------------------------------
+double Gain(const FilterParameters& p, double omega)
+{
+  Validate(p);
+  RequireFrequency(omega);
+  return Evaluate(p, omega);
+}
+
+//------------------------------------------------------------------------------
+Vector Gains(const FilterParameters& p, const Vector& lambda)
+{
+  Validate(p);
+  Vector out(lambda.size());
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    Require(!std::isnan(lambda[k]), "eigenvalue " + std::to_string(k) + " is NaN");
+    const double omega = std::sqrt(std::max(lambda[k], 0.0));
+    RequireFrequency(omega);
+    out[k] = Evaluate(p, omega);
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+double NyquistFrequency(const TriangleMesh& mesh)
+{
+  const double h = MeanEdgeLength(mesh);
+  Require(h > 0.0 && std::isfinite(h),
+    "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
+  return Pi / h;
+}
+
+//------------------------------------------------------------------------------
+double MeanGain(const FilterParameters& p, double omegaLow, double omegaHigh)
+{
+  Validate(p);
+  RequireFrequency(omegaLow);
+  Require(!std::isnan(omegaHigh), "the upper frequency is NaN");
+  if (!(omegaHigh > omegaLow))
+  {
+    return Evaluate(p, omegaLow);
+  }
+  RequireFrequency(omegaHigh);
+  const double width = omegaHigh - omegaLow;
+  if (p.Kind == FilterKind::HeatDiffusion)
+  {
+    if (p.Time == 0.0)
+    {
+      return 1.0;
+    }
+    // Integral of exp(-t w^2) = sqrt(pi / t) / 2 (erf(sqrt(t) b) - erf(sqrt(t) a)), with erfc
+    // so that the difference keeps its digits when both arguments are large.
+    const double s = std::sqrt(p.Time);
+    return 0.5 * std::sqrt(Pi) / s * (std::erfc(s * omegaLow) - std::erfc(s * omegaHigh)) / width;
+  }
+  std::vector<double> cuts = Breakpoints(p);
+  cuts.push_back(omegaLow);
+  cuts.push_back(omegaHigh);
+  std::sort(cuts.begin(), cuts.end());
+  double integral = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+  {
+    const double a = std::max(cuts[i], omegaLow);
+    const double b = std::min(cuts[i + 1], omegaHigh);
+    if (b > a)
+    {
+      integral += Integrate(p, a, b);
+    }
+  }
+  return integral / width;
+}
+} // namespace spectral

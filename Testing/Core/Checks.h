@@ -1,0 +1,121 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Assertions and a case runner for the core tests. Every check prints the measured value and
+// its bound; a failed check makes the test exit with EXIT_FAILURE.
+#ifndef spectral_Testing_Checks_h
+#define spectral_Testing_Checks_h
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+
+namespace spectral
+{
+namespace testing
+{
+/// Number of failed checks so far.
+inline int& Failures()
+{
+  static int count = 0;
+  return count;
+}
+
+/// Record a property: print it, count it as failed if ok is false.
+inline void Check(bool ok, const std::string& what)
+{
+  std::printf("  [%s] %s\n", ok ? " ok " : "FAIL", what.c_str());
+  if (!ok)
+  {
+    ++Failures();
+  }
+}
+
+/// Check value <= bound (false for NaN), printing both.
+inline void CheckBelow(double value, double bound, const std::string& what)
+{
+  char buffer[96];
+  std::snprintf(buffer, sizeof(buffer), ": %.3e <= %.1e", value, bound);
+  Check(value <= bound, what + buffer);
+}
+
+/// Check |value - expected| <= tolerance (false for NaN), printing the values.
+inline void CheckNear(double value, double expected, double tolerance, const std::string& what)
+{
+  char buffer[128];
+  std::snprintf(buffer, sizeof(buffer), ": %.12g vs %.12g (|diff| %.2e <= %.1e)", value, expected,
+    std::abs(value - expected), tolerance);
+  Check(std::abs(value - expected) <= tolerance, what + buffer);
+}
+
+/// Check that f() throws an exception of type E.
+template <typename E, typename F>
+void CheckThrows(F f, const std::string& what)
+{
+  try
+  {
+    f();
+  }
+  catch (const E& e)
+  {
+    Check(true, what + " (threw: " + e.what() + ")");
+    return;
+  }
+  catch (const std::exception& e)
+  {
+    Check(false, what + " threw the wrong exception: " + e.what());
+    return;
+  }
+  Check(false, what + " did not throw");
+}
+
+/// One named test case: a function that calls the checks.
+struct Case
+{
+  const char* Name;
+  void (*Run)();
+};
+
+/**
+ * Run the case named by argv[1], or every case without an argument. Returns EXIT_FAILURE if a
+ * check failed, a case threw, or the name is unknown.
+ */
+template <std::size_t N>
+int RunCases(int argc, char* argv[], const Case (&cases)[N])
+{
+  bool found = false;
+  for (const Case& c : cases)
+  {
+    if (argc > 1 && std::strcmp(argv[1], c.Name) != 0)
+    {
+      continue;
+    }
+    found = true;
+    std::printf("%s\n", c.Name);
+    try
+    {
+      c.Run();
+    }
+    catch (const std::exception& e)
+    {
+      Check(false, std::string("unexpected exception: ") + e.what());
+    }
+  }
+  if (!found)
+  {
+    std::printf("unknown test case '%s'\n", argc > 1 ? argv[1] : "");
+    return EXIT_FAILURE;
+  }
+  if (Failures() > 0)
+  {
+    std::printf("%d check(s) failed\n", Failures());
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
+} // namespace testing
+} // namespace spectral
+
+#endif

@@ -1,0 +1,172 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Meshes built in code for the core tests: icospheres, flat rectangles, a torus.
+#ifndef spectral_Testing_Meshes_h
+#define spectral_Testing_Meshes_h
+
+#include "Mesh.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace spectral
+{
+namespace testing
+{
+/// Unit icosphere: the icosahedron split `level` times, points projected to the sphere.
+/// 10 * 4^level + 2 points.
+inline TriangleMesh Icosphere(int level)
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<std::array<double, 3>> v = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 },
+    { 1, -t, 0 }, { 0, -1, t }, { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 },
+    { t, 0, 1 }, { -t, 0, -1 }, { -t, 0, 1 } };
+  std::vector<std::array<int, 3>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
+    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
+    { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 },
+    { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
+  auto normalize = [](std::array<double, 3> p) {
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    return std::array<double, 3>{ p[0] / r, p[1] / r, p[2] / r };
+  };
+  for (auto& p : v)
+  {
+    p = normalize(p);
+  }
+  for (int l = 0; l < level; ++l)
+  {
+    std::map<std::pair<int, int>, int> midpoints;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto it = midpoints.find(key);
+      if (it != midpoints.end())
+      {
+        return it->second;
+      }
+      v.push_back(normalize({ v[a][0] + v[b][0], v[a][1] + v[b][1], v[a][2] + v[b][2] }));
+      const int id = static_cast<int>(v.size()) - 1;
+      midpoints[key] = id;
+      return id;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& tri : f)
+    {
+      const int a = midpoint(tri[0], tri[1]);
+      const int b = midpoint(tri[1], tri[2]);
+      const int c = midpoint(tri[2], tri[0]);
+      next.push_back({ tri[0], a, c });
+      next.push_back({ tri[1], b, a });
+      next.push_back({ tri[2], c, b });
+      next.push_back({ a, b, c });
+    }
+    f.swap(next);
+  }
+  TriangleMesh mesh;
+  mesh.Vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    mesh.Vertices.row(static_cast<Eigen::Index>(i)) << v[i][0], v[i][1], v[i][2];
+  }
+  mesh.Faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i)
+  {
+    mesh.Faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
+  }
+  return mesh;
+}
+
+/// Flat a by b rectangle in the z = 0 plane, nx by ny cells, each split into two triangles
+/// along alternating diagonals.
+inline TriangleMesh Rectangle(double a, double b, int nx, int ny)
+{
+  TriangleMesh mesh;
+  mesh.Vertices.resize((nx + 1) * (ny + 1), 3);
+  for (int j = 0; j <= ny; ++j)
+  {
+    for (int i = 0; i <= nx; ++i)
+    {
+      mesh.Vertices.row(j * (nx + 1) + i) << a * i / nx, b * j / ny, 0.0;
+    }
+  }
+  mesh.Faces.resize(2 * nx * ny, 3);
+  int t = 0;
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      const int p00 = j * (nx + 1) + i;
+      const int p10 = p00 + 1;
+      const int p01 = p00 + nx + 1;
+      const int p11 = p01 + 1;
+      if ((i + j) % 2 == 0)
+      {
+        mesh.Faces.row(t++) << p00, p10, p11;
+        mesh.Faces.row(t++) << p00, p11, p01;
+      }
+      else
+      {
+        mesh.Faces.row(t++) << p00, p10, p01;
+        mesh.Faces.row(t++) << p10, p11, p01;
+      }
+    }
+  }
+  return mesh;
+}
+
+/// Torus around the z axis with radii R (of the centre circle) and r (of the tube), nu by nv
+/// quads split into two triangles. Closed, genus one, area 4 pi^2 R r in the limit.
+inline TriangleMesh Torus(double R, double r, int nu, int nv)
+{
+  const double pi = 3.14159265358979323846;
+  TriangleMesh mesh;
+  mesh.Vertices.resize(nu * nv, 3);
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = 2.0 * pi * i / nu;
+      const double v = 2.0 * pi * j / nv;
+      mesh.Vertices.row(i * nv + j) << (R + r * std::cos(v)) * std::cos(u),
+        (R + r * std::cos(v)) * std::sin(u), r * std::sin(v);
+    }
+  }
+  mesh.Faces.resize(2 * nu * nv, 3);
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const int p00 = i * nv + j;
+      const int p10 = ((i + 1) % nu) * nv + j;
+      const int p01 = i * nv + (j + 1) % nv;
+      const int p11 = ((i + 1) % nu) * nv + (j + 1) % nv;
+      mesh.Faces.row(2 * p00) << p00, p10, p11;
+      mesh.Faces.row(2 * p00 + 1) << p00, p11, p01;
+    }
+  }
+  return mesh;
+}
+
+/// The union of two meshes (points and triangles of b appended to those of a).
+inline TriangleMesh Join(const TriangleMesh& a, const TriangleMesh& b)
+{
+  TriangleMesh out;
+  out.Vertices.resize(a.Vertices.rows() + b.Vertices.rows(), 3);
+  out.Vertices << a.Vertices, b.Vertices;
+  out.Faces.resize(a.Faces.rows() + b.Faces.rows(), 3);
+  out.Faces << a.Faces, (b.Faces.array() + static_cast<int>(a.Vertices.rows())).matrix();
+  return out;
+}
+
+/// The mesh moved by `offset` along x.
+inline TriangleMesh Translated(TriangleMesh mesh, double offset)
+{
+  mesh.Vertices.col(0).array() += offset;
+  return mesh;
+}
+} // namespace testing
+} // namespace spectral
+
+#endif

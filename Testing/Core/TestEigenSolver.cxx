@@ -1,0 +1,432 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Properties of the generalized eigensolver (Filters/Spectral/EigenSolver.h) on meshes with a
+// known spectrum: the unit sphere (l(l+1), multiplicity 2l+1), the free a x b rectangle
+// (pi^2 (i^2/a^2 + j^2/b^2)), and disjoint components (one zero eigenvalue each).
+#include "Checks.h"
+#include "EigenSolver.h"
+#include "Meshes.h"
+#include "Operators.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace spectral;
+using namespace spectral::testing;
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+/// The pencil (L, M) of a mesh with the lumped or the consistent mass.
+struct Problem
+{
+  SparseMatrix L;
+  SparseMatrix M;
+};
+
+Problem Lumped(const TriangleMesh& mesh)
+{
+  return { CotanStiffness(mesh), Diagonal(LumpedMass(mesh)) };
+}
+
+Problem Consistent(const TriangleMesh& mesh)
+{
+  return { CotanStiffness(mesh), ConsistentMass(mesh) };
+}
+
+EigenResult Solve(const Problem& p, int m, EigenOptions options = EigenOptions())
+{
+  options.NumberOfEigenpairs = m;
+  return SmallestEigenpairs(p.L, p.M, options);
+}
+
+std::string Str(double value)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3e", value);
+  return buffer;
+}
+
+/// The contract of every result: ascending, M-orthonormal, small residuals.
+void CheckPairs(const Problem& p, const EigenResult& r, const std::string& name)
+{
+  const Vector& lambda = r.Eigenvalues;
+  bool ascending = true;
+  for (Eigen::Index k = 1; k < lambda.size(); ++k)
+  {
+    ascending = ascending && lambda[k] >= lambda[k - 1];
+  }
+  Check(ascending, name + ": eigenvalues ascending");
+  CheckBelow(OrthonormalityError(r.Eigenvectors, p.M), 1e-10, name + ": max |H^T M H - I|");
+  const Vector residuals = RelativeResiduals(p.L, p.M, lambda, r.Eigenvectors);
+  CheckBelow(residuals.maxCoeff(), 1e-8, name + ": max relative residual");
+}
+
+/**
+ * Largest principal angle (its sine) between the spans of A and B, both M-orthonormal:
+ * sqrt of the largest eigenvalue of R^T M R with R = B - A A^T M B, the part of B outside A.
+ */
+double SinLargestAngle(const DenseMatrix& A, const DenseMatrix& B, const SparseMatrix& M)
+{
+  const DenseMatrix MB = M * B;
+  const DenseMatrix R = B - A * (A.transpose() * MB);
+  const DenseMatrix G = R.transpose() * (M * R);
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(0.5 * (G + G.transpose()));
+  return std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
+}
+
+/// Accuracy of the sphere's multiplets l = 1..lmax, grouped by sorted index l^2 .. (l+1)^2 - 1.
+struct SphereGroups
+{
+  double MeanError = 0.0; ///< max over l of |mean - l(l+1)| / l(l+1)
+  double Spread = 0.0;    ///< max over l of (max - min) / l(l+1) inside the group
+  bool Separated = true;  ///< every group lies below the next one
+  bool AllAbove = true;   ///< every eigenvalue of l >= 1 is above l(l+1)
+  std::vector<double> Means;
+};
+
+SphereGroups Groups(const Vector& lambda, int lmax)
+{
+  SphereGroups out;
+  for (int l = 1; l <= lmax; ++l)
+  {
+    const Vector group = lambda.segment(l * l, 2 * l + 1);
+    const double exact = l * (l + 1.0);
+    out.Means.push_back(group.mean());
+    out.MeanError = std::max(out.MeanError, std::abs(group.mean() - exact) / exact);
+    out.Spread = std::max(out.Spread, (group.maxCoeff() - group.minCoeff()) / exact);
+    out.AllAbove = out.AllAbove && group.minCoeff() > exact;
+    if (l < lmax)
+    {
+      out.Separated = out.Separated && group.maxCoeff() < lambda[(l + 1) * (l + 1)];
+    }
+  }
+  out.Separated = out.Separated && lambda[0] < lambda[1];
+  return out;
+}
+
+/// Eigenvalues are equal to `tolerance` relative to max(|lambda|, lambda_1).
+void CheckSameValues(const Vector& a, const Vector& b, double tolerance, const std::string& name)
+{
+  const double floor = std::abs(a[1]);
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < a.size(); ++k)
+  {
+    worst = std::max(worst, std::abs(a[k] - b[k]) / std::max(std::abs(a[k]), floor));
+  }
+  CheckBelow(worst, tolerance, name + ": max relative eigenvalue difference");
+}
+
+/// The eigenspaces of each multiplet l <= lmax agree.
+void CheckSameSphereSubspaces(const DenseMatrix& A, const DenseMatrix& B, const SparseMatrix& M,
+  int lmax, double tolerance, const std::string& name)
+{
+  double worst = 0.0;
+  for (int l = 0; l <= lmax; ++l)
+  {
+    worst = std::max(worst,
+      SinLargestAngle(A.middleCols(l * l, 2 * l + 1), B.middleCols(l * l, 2 * l + 1), M));
+  }
+  CheckBelow(worst, tolerance, name + ": max sin(principal angle) over the multiplets");
+}
+
+//------------------------------------------------------------------------------
+void SphereSpectrum()
+{
+  const int lmax = 6;
+  const int m = (lmax + 1) * (lmax + 1);
+  std::vector<double> errors;
+  for (int level = 3; level <= 5; ++level)
+  {
+    const TriangleMesh mesh = Icosphere(level);
+    const Problem p = Lumped(mesh);
+    const EigenResult r = Solve(p, m);
+    const std::string name = "icosphere(" + std::to_string(level) + "), n = " +
+      std::to_string(mesh.Vertices.rows()) + ", lumped";
+    CheckPairs(p, r, name);
+    const SphereGroups g = Groups(r.Eigenvalues, lmax);
+    Check(g.Separated, name + ": 1, 3, 5, ..., 13 eigenvalues per multiplet l = 0..6");
+    CheckBelow(g.Spread, 4e-2 / (1 << (2 * (level - 3))),
+      name + ": max (spread of a multiplet) / l(l+1)");
+    CheckBelow(std::abs(r.Eigenvalues[0]), 1e-10 * r.Eigenvalues[m - 1], name + ": |lambda_0|");
+    const double constant = 1.0 / std::sqrt(p.M.diagonal().sum());
+    CheckBelow((r.Eigenvectors.col(0).array() - constant).abs().maxCoeff(), 1e-8 * constant,
+      name + ": max |h_0 - 1/sqrt(area)|");
+    std::printf("    group means:");
+    for (int l = 1; l <= lmax; ++l)
+    {
+      std::printf(" %.4f (%d)", g.Means[l - 1], l * (l + 1));
+    }
+    std::printf("\n");
+    // Observed 5.6e-2, 1.4e-2, 3.6e-3: O(h^2).
+    CheckBelow(g.MeanError, 8e-2 / (1 << (2 * (level - 3))),
+      name + ": max |mean_l - l(l+1)| / l(l+1), l = 1..6");
+    errors.push_back(g.MeanError);
+  }
+  Check(errors[1] < 0.35 * errors[0] && errors[2] < 0.35 * errors[1],
+    "multiplet error shrinks ~4x per level (O(h^2)): " + Str(errors[0]) + " -> " + Str(errors[1]) +
+      " -> " + Str(errors[2]));
+}
+
+//------------------------------------------------------------------------------
+void SphereConsistentMass()
+{
+  const int lmax = 6;
+  const int m = (lmax + 1) * (lmax + 1);
+  std::vector<double> errors;
+  for (int level = 3; level <= 4; ++level)
+  {
+    const TriangleMesh mesh = Icosphere(level);
+    const Problem p = Consistent(mesh);
+    const EigenResult r = Solve(p, m);
+    const std::string name = "icosphere(" + std::to_string(level) + "), consistent mass";
+    CheckPairs(p, r, name);
+    const SphereGroups g = Groups(r.Eigenvalues, lmax);
+    Check(g.Separated, name + ": multiplets of 2l+1 eigenvalues");
+    Check(g.AllAbove, name + ": every eigenvalue lies above l(l+1) (convergence from above)");
+    const SphereGroups lumped = Groups(Solve(Lumped(mesh), m).Eigenvalues, lmax);
+    bool lumpedBelow = true;
+    for (int l = 1; l <= lmax; ++l)
+    {
+      lumpedBelow = lumpedBelow && lumped.Means[l - 1] < g.Means[l - 1];
+    }
+    Check(lumpedBelow, name + ": lumped-mass multiplets lie below the consistent ones");
+    // Observed 6.6e-2 and 1.6e-2.
+    CheckBelow(g.MeanError, level == 3 ? 1e-1 : 2.5e-2, name + ": max relative multiplet error");
+    errors.push_back(g.MeanError);
+  }
+  Check(errors[1] < 0.35 * errors[0],
+    "consistent-mass error shrinks ~4x per level: " + Str(errors[0]) + " -> " + Str(errors[1]));
+}
+
+//------------------------------------------------------------------------------
+void FreeRectangle()
+{
+  const double a = 2.0;
+  const double b = 1.0;
+  const TriangleMesh mesh = Rectangle(a, b, 64, 32);
+  const Problem p = Lumped(mesh);
+  const int m = 15;
+  const EigenResult r = Solve(p, m);
+  CheckPairs(p, r, "rectangle 2 x 1, 64 x 32 cells");
+  std::vector<double> exact;
+  for (int i = 0; i < 12; ++i)
+  {
+    for (int j = 0; j < 12; ++j)
+    {
+      exact.push_back(Pi * Pi * (i * i / (a * a) + j * j / (b * b)));
+    }
+  }
+  std::sort(exact.begin(), exact.end());
+  CheckBelow(std::abs(r.Eigenvalues[0]), 1e-10 * r.Eigenvalues[m - 1], "|lambda_0|");
+  double worst = 0.0;
+  std::printf("    lambda / exact:");
+  for (int k = 1; k < m; ++k)
+  {
+    worst = std::max(worst, std::abs(r.Eigenvalues[k] - exact[k]) / exact[k]);
+    std::printf(" %.3f/%.3f", r.Eigenvalues[k], exact[k]);
+  }
+  std::printf("\n");
+  // Observed 5.8e-3 (the 15th value, 61.3 vs 61.7).
+  CheckBelow(worst, 1e-2, "first 15 Neumann eigenvalues pi^2 (i^2/4 + j^2): max relative error");
+}
+
+//------------------------------------------------------------------------------
+void TorusContract()
+{
+  // A closed surface of genus one, many bands with the default band size.
+  const Problem p = Lumped(Torus(2.0, 0.5, 60, 24));
+  const EigenResult r = Solve(p, 300);
+  CheckPairs(p, r, "torus, n = 1440, m = 300");
+  Check(r.Bands > 1, "solved in " + std::to_string(r.Bands) + " bands");
+  const Vector residuals = RelativeResiduals(p.L, p.M, r.Eigenvalues, r.Eigenvectors);
+  CheckBelow(std::abs(r.MaxResidual - residuals.maxCoeff()), 1e-14,
+    "EigenResult::MaxResidual matches RelativeResiduals");
+  bool signs = true;
+  for (Eigen::Index k = 0; k < r.Eigenvectors.cols(); ++k)
+  {
+    Eigen::Index row = 0;
+    r.Eigenvectors.col(k).cwiseAbs().maxCoeff(&row);
+    signs = signs && r.Eigenvectors(row, k) > 0.0;
+  }
+  Check(signs, "the largest-magnitude entry of every eigenvector is positive");
+}
+
+//------------------------------------------------------------------------------
+void DisjointComponents()
+{
+  const TriangleMesh mesh = Join(Icosphere(3), Translated(Icosphere(3), 3.0));
+  const Problem p = Lumped(mesh);
+  const int m = 20;
+  EigenOptions options;
+  options.DenseThreshold = 0;
+  const EigenResult r = Solve(p, m, options);
+  CheckPairs(p, r, "two icospheres(3), n = 1284");
+  const double top = r.Eigenvalues[m - 1];
+  CheckBelow(std::abs(r.Eigenvalues[0]), 1e-8 * top, "|lambda_0|");
+  CheckBelow(std::abs(r.Eigenvalues[1]), 1e-8 * top, "|lambda_1|");
+  Check(r.Eigenvalues[2] > 0.1 * r.Eigenvalues[3] && r.Eigenvalues[2] > 1.0,
+    "lambda_2 = " + Str(r.Eigenvalues[2]) + " is not zero");
+  // The null space is spanned by the indicators of the two components.
+  DenseMatrix indicators = DenseMatrix::Zero(mesh.Vertices.rows(), 2);
+  const Eigen::Index half = mesh.Vertices.rows() / 2;
+  indicators.col(0).head(half).setOnes();
+  indicators.col(1).tail(half).setOnes();
+  for (int c = 0; c < 2; ++c)
+  {
+    indicators.col(c) /= std::sqrt(indicators.col(c).dot(p.M * indicators.col(c)));
+  }
+  CheckBelow(SinLargestAngle(indicators, r.Eigenvectors.leftCols(2), p.M), 1e-8,
+    "null space = span of the component indicators: sin(largest angle)");
+}
+
+//------------------------------------------------------------------------------
+void BandSeams()
+{
+  // m = 64 ends with the whole multiplet l = 7; narrow bands cut through the multiplets.
+  const int lmax = 7;
+  const int m = 64;
+  {
+    const Problem p = Lumped(Icosphere(3));
+    EigenOptions dense;
+    dense.DenseThreshold = 1 << 30;
+    EigenOptions narrow;
+    narrow.DenseThreshold = 0;
+    narrow.BandSize = 20;
+    EigenOptions wide;
+    wide.DenseThreshold = 0;
+    wide.BandSize = m + 40;
+    const EigenResult d = Solve(p, m, dense);
+    const EigenResult n = Solve(p, m, narrow);
+    const EigenResult w = Solve(p, m, wide);
+    CheckPairs(p, n, "icosphere(3), band size 20");
+    CheckPairs(p, w, "icosphere(3), band size 104");
+    Check(d.Bands == 0 && n.Bands > 3 && w.Bands >= 1,
+      "dense, " + std::to_string(n.Bands) + " narrow and " + std::to_string(w.Bands) +
+        " wide band(s)");
+    CheckSameValues(d.Eigenvalues, n.Eigenvalues, 1e-9, "dense vs narrow");
+    CheckSameValues(d.Eigenvalues, w.Eigenvalues, 1e-9, "dense vs wide");
+    CheckSameSphereSubspaces(d.Eigenvectors, n.Eigenvectors, p.M, lmax, 1e-7, "dense vs narrow");
+    CheckSameSphereSubspaces(d.Eigenvectors, w.Eigenvectors, p.M, lmax, 1e-7, "dense vs wide");
+  }
+  {
+    const Problem p = Lumped(Icosphere(4));
+    EigenOptions narrow;
+    narrow.BandSize = 20;
+    EigenOptions wide;
+    wide.BandSize = m + 40;
+    const EigenResult n = Solve(p, m, narrow);
+    const EigenResult w = Solve(p, m, wide);
+    CheckPairs(p, n, "icosphere(4), band size 20");
+    CheckPairs(p, w, "icosphere(4), band size 104");
+    Check(n.Bands > 3, std::to_string(n.Bands) + " narrow bands");
+    CheckSameValues(n.Eigenvalues, w.Eigenvalues, 1e-9, "icosphere(4) narrow vs wide");
+    CheckSameSphereSubspaces(
+      n.Eigenvectors, w.Eigenvectors, p.M, lmax, 1e-7, "icosphere(4) narrow vs wide");
+  }
+}
+
+//------------------------------------------------------------------------------
+void MethodsAgree()
+{
+  // Block Lanczos and Spectra's Lanczos give the same pairs, with narrow and default bands.
+  const int lmax = 7;
+  const int m = 64;
+  const Problem p = Lumped(Icosphere(4));
+  const EigenResult block = Solve(p, m);
+  for (int bandSize : { 0, 20 })
+  {
+    EigenOptions options;
+    options.Method = LanczosMethod::Spectra;
+    options.BandSize = bandSize;
+    const EigenResult spectra = Solve(p, m, options);
+    const std::string name = "Spectra, band size " + std::to_string(bandSize);
+    CheckPairs(p, spectra, name);
+    CheckSameValues(block.Eigenvalues, spectra.Eigenvalues, 1e-9, "block vs " + name);
+    CheckSameSphereSubspaces(
+      block.Eigenvectors, spectra.Eigenvectors, p.M, lmax, 1e-7, "block vs " + name);
+  }
+}
+
+//------------------------------------------------------------------------------
+void InertiaCounts()
+{
+  const int lmax = 6;
+  const Problem p = Lumped(Icosphere(4));
+  const EigenResult r = Solve(p, (lmax + 1) * (lmax + 1));
+  for (int l = 0; l < lmax; ++l)
+  {
+    // Midway between the multiplets l and l + 1.
+    const int last = (l + 1) * (l + 1) - 1;
+    const double sigma = 0.5 * (r.Eigenvalues[last] + r.Eigenvalues[last + 1]);
+    const int count = CountEigenvaluesBelow(p.L, p.M, sigma);
+    Check(count == last + 1, "eigenvalues below " + Str(sigma) + ": inertia " +
+        std::to_string(count) + ", computed " + std::to_string(last + 1));
+  }
+  Check(CountEigenvaluesBelow(p.L, p.M, -1e-3) == 0, "no eigenvalue below -1e-3");
+}
+
+//------------------------------------------------------------------------------
+void Cancellation()
+{
+  const Problem p = Lumped(Icosphere(4));
+  int polls = 0;
+  Monitor monitor;
+  monitor.Cancelled = [&polls]() { return ++polls > 5; };
+  EigenOptions options;
+  options.NumberOfEigenpairs = 100;
+  CheckThrows<Cancelled>([&p, &options, &monitor]()
+    { SmallestEigenpairs(p.L, p.M, options, monitor); },
+    "cancel after 5 polls");
+  Check(polls == 6, "stopped at the first poll that asked (" + std::to_string(polls) + " polls)");
+
+  std::vector<double> reports;
+  Monitor watch;
+  watch.Progress = [&reports](double f) { reports.push_back(f); };
+  SmallestEigenpairs(p.L, p.M, options, watch);
+  bool monotone = !reports.empty() && reports.front() >= 0.0 && reports.back() == 1.0;
+  for (std::size_t i = 1; i < reports.size(); ++i)
+  {
+    monotone = monotone && reports[i] >= reports[i - 1] && reports[i] <= 1.0;
+  }
+  Check(
+    monotone, "progress rises from >= 0 to 1 in " + std::to_string(reports.size()) + " reports");
+}
+
+//------------------------------------------------------------------------------
+void InvalidSizes()
+{
+  const Problem p = Lumped(Icosphere(1));
+  const int n = static_cast<int>(p.L.rows());
+  CheckThrows<InvalidInput>([&p, n]() { Solve(p, n + 1); }, "m = n + 1");
+  CheckThrows<InvalidInput>([&p]() { Solve(p, 0); }, "m = 0");
+  const Problem other = Lumped(Icosphere(2));
+  CheckThrows<InvalidInput>([&p, &other]()
+    { SmallestEigenpairs(p.L, other.M, EigenOptions()); },
+    "L and M of different sizes");
+  const EigenResult all = Solve(p, n);
+  CheckPairs(p, all, "m = n = " + std::to_string(n));
+}
+
+const Case Cases[] = {
+  { "SphereSpectrum", SphereSpectrum },
+  { "SphereConsistentMass", SphereConsistentMass },
+  { "FreeRectangle", FreeRectangle },
+  { "TorusContract", TorusContract },
+  { "DisjointComponents", DisjointComponents },
+  { "BandSeams", BandSeams },
+  { "MethodsAgree", MethodsAgree },
+  { "InertiaCounts", InertiaCounts },
+  { "Cancellation", Cancellation },
+  { "InvalidSizes", InvalidSizes },
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return RunCases(argc, argv, Cases);
+}

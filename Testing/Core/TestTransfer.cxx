@@ -1,0 +1,481 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Properties of the manifold harmonic transform and the transfer functions
+// (Filters/Spectral/Transfer.h).
+#include "Checks.h"
+#include "EigenSolver.h"
+#include "Meshes.h"
+#include "Operators.h"
+#include "Transfer.h"
+
+#include <limits>
+#include <random>
+#include <string>
+
+using namespace spectral;
+using namespace spectral::testing;
+
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+/// A basis in the row-major layout of the VTK point-data array, with its mass and spectrum.
+struct Basis
+{
+  RowMatrix H; // n x m
+  Vector Mass;
+  Vector Lambda;
+  TriangleMesh Mesh;
+
+  BasisView View() const { return BasisView(this->H.data(), this->H.rows(), this->H.cols()); }
+};
+
+Basis MakeBasis(const TriangleMesh& mesh, int m)
+{
+  Basis b;
+  b.Mesh = mesh;
+  b.Mass = LumpedMass(mesh);
+  EigenOptions options;
+  options.NumberOfEigenpairs = m;
+  const EigenResult r = SmallestEigenpairs(CotanStiffness(mesh), Diagonal(b.Mass), options);
+  b.H = r.Eigenvectors;
+  b.Lambda = r.Eigenvalues;
+  return b;
+}
+
+ConstRowView View(const RowMatrix& A)
+{
+  return ConstRowView(A.data(), A.rows(), A.cols());
+}
+
+RowMatrix RandomSignals(Eigen::Index n, Eigen::Index c, unsigned seed)
+{
+  std::mt19937 generator(seed);
+  std::normal_distribution<double> normal;
+  RowMatrix X(n, c);
+  for (Eigen::Index i = 0; i < X.size(); ++i)
+  {
+    X.data()[i] = normal(generator);
+  }
+  return X;
+}
+
+double MaxAbs(const RowMatrix& A)
+{
+  return A.size() ? A.cwiseAbs().maxCoeff() : 0.0;
+}
+
+/// The empty signal: no re-injection.
+const ConstRowView NoSignal(nullptr, 0, 0);
+
+//------------------------------------------------------------------------------
+void RoundTripFullBasis()
+{
+  // m = n: the dense path gives a complete basis, so the transform is invertible.
+  const Basis b = MakeBasis(Icosphere(1), 42);
+  const RowMatrix X = RandomSignals(42, 3, 1u);
+  const RowMatrix coefficients = ForwardTransform(b.View(), b.Mass, View(X));
+  Check(coefficients.rows() == 42 && coefficients.cols() == 3, "coefficients are m x c = 42 x 3");
+  const RowMatrix Y = InverseTransform(
+    b.View(), Vector::Ones(42), View(coefficients), NoSignal, 0.0);
+  CheckBelow(MaxAbs(Y - X), 1e-10 * MaxAbs(X), "m = n: max |inverse(forward(X)) - X|");
+  // Parseval: sum_k x~_k^2 = x^T D x per component.
+  const double energy = (X.array().square().colwise() * b.Mass.array()).sum();
+  CheckNear(coefficients.squaredNorm(), energy, 1e-10 * energy, "Parseval: |X~|^2 = X^T D X");
+}
+
+//------------------------------------------------------------------------------
+void ReinjectionAndProjection()
+{
+  const int m = 30;
+  const Basis b = MakeBasis(Icosphere(2), m);
+  const Eigen::Index n = b.H.rows();
+  const RowMatrix X = RandomSignals(n, 3, 2u);
+  const RowMatrix coefficients = ForwardTransform(b.View(), b.Mass, View(X));
+  const Vector ones = Vector::Ones(m);
+
+  const RowMatrix same = InverseTransform(b.View(), ones, View(coefficients), View(X), 1.0);
+  CheckBelow(MaxAbs(same - X), 1e-10 * MaxAbs(X), "m < n, gains 1, hfGain 1: max |Y - X|");
+
+  // Gains 1 without re-injection: the D-orthogonal projection onto the span of H.
+  const RowMatrix P = InverseTransform(b.View(), ones, View(coefficients), NoSignal, 0.0);
+  const RowMatrix again = ForwardTransform(b.View(), b.Mass, View(P));
+  CheckBelow(MaxAbs(again - coefficients), 1e-10 * MaxAbs(coefficients),
+    "projection keeps the coefficients: max |forward(P X) - X~|");
+  const RowMatrix rest = X - P;
+  CheckBelow(MaxAbs(ForwardTransform(b.View(), b.Mass, View(rest))), 1e-10 * MaxAbs(X),
+    "X - P X is D-orthogonal to every harmonic");
+
+  // General gains and re-injection against the definition.
+  const Vector gains = Vector::LinSpaced(m, 1.5, -0.5);
+  const double hf = 0.37;
+  const RowMatrix Y = InverseTransform(b.View(), gains, View(coefficients), View(X), hf);
+  const RowMatrix expected =
+    b.H * (gains.asDiagonal() * coefficients) + hf * (X - b.H * coefficients);
+  CheckBelow(MaxAbs(Y - expected), 1e-12 * MaxAbs(expected),
+    "Y = sum g_k x~_k H^k + hf (X - sum x~_k H^k)");
+}
+
+//------------------------------------------------------------------------------
+void Linearity()
+{
+  const int m = 40;
+  const Basis b = MakeBasis(Icosphere(2), m);
+  const Eigen::Index n = b.H.rows();
+  const RowMatrix X = RandomSignals(n, 2, 3u);
+  const RowMatrix Z = RandomSignals(n, 2, 4u);
+  const double alpha = 2.5;
+  const double beta = -0.75;
+  const RowMatrix mix = alpha * X + beta * Z;
+  FilterParameters p;
+  p.Kind = FilterKind::Enhancement;
+  p.Cutoff = 3.0;
+  p.Gain = 3.0;
+  const Vector gains = Gains(p, b.Lambda);
+  const double hf = 3.0;
+  auto filter = [&b, &gains, hf](const RowMatrix& S) {
+    const RowMatrix C = ForwardTransform(b.View(), b.Mass, View(S));
+    return RowMatrix(InverseTransform(b.View(), gains, View(C), View(S), hf));
+  };
+  const RowMatrix left = filter(mix);
+  const RowMatrix right = alpha * filter(X) + beta * filter(Z);
+  CheckBelow(
+    MaxAbs(left - right), 1e-12 * MaxAbs(right), "filter(a X + b Z) = a filter(X) + b filter(Z)");
+  const RowMatrix Cmix = ForwardTransform(b.View(), b.Mass, View(mix));
+  const RowMatrix Csum = alpha * ForwardTransform(b.View(), b.Mass, View(X)) +
+    beta * ForwardTransform(b.View(), b.Mass, View(Z));
+  CheckBelow(MaxAbs(Cmix - Csum), 1e-12 * MaxAbs(Csum), "forward transform is linear");
+}
+
+/// Largest |F(w + h) - F(w)| / h over a fine grid of [lo, hi].
+double MaxSlope(const FilterParameters& p, double lo, double hi)
+{
+  const int steps = 20000;
+  const double h = (hi - lo) / steps;
+  double out = 0.0;
+  for (int i = 0; i < steps; ++i)
+  {
+    const double w = lo + i * h;
+    out = std::max(out, std::abs(Gain(p, w + h) - Gain(p, w)) / h);
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+void StepShapes()
+{
+  FilterParameters p;
+  p.Cutoff = 2.0;
+  p.Transition = 0.0;
+  p.Kind = FilterKind::LowPass;
+  Check(Gain(p, 0.0) == 1.0 && Gain(p, 2.0) == 1.0 && Gain(p, 2.0 + 1e-12) == 0.0 &&
+      Gain(p, 50.0) == 0.0,
+    "sharp low pass: 1 up to and at the cutoff, 0 above");
+  p.Kind = FilterKind::HighPass;
+  Check(Gain(p, 0.0) == 0.0 && Gain(p, 2.0) == 0.0 && Gain(p, 2.0 + 1e-12) == 1.0,
+    "sharp high pass: 0 up to and at the cutoff, 1 above");
+
+  p.Transition = 0.2; // raised cosine over [1.8, 2.2]
+  p.Kind = FilterKind::LowPass;
+  Check(Gain(p, 0.0) == 1.0 && Gain(p, 1.8) == 1.0 && Gain(p, 2.2) == 0.0 && Gain(p, 9.0) == 0.0,
+    "smooth low pass: 1 below 1.8, 0 above 2.2");
+  CheckNear(Gain(p, 2.0), 0.5, 1e-14, "smooth low pass: halfway at the cutoff");
+  CheckNear(Gain(p, 1.9) + Gain(p, 2.1), 1.0, 1e-14, "smooth low pass: symmetric about the cutoff");
+  const double slope = MaxSlope(p, 1.5, 2.5);
+  CheckNear(slope, Pi / (2.0 * 0.4), 1e-3 * Pi / 0.8,
+    "smooth low pass: continuous, largest slope pi / (2 width)");
+  const double h = 1e-6;
+  const double endSlope =
+    std::max(std::abs(Gain(p, 1.8 + h) - Gain(p, 1.8)), std::abs(Gain(p, 2.2) - Gain(p, 2.2 - h)));
+  CheckBelow(endSlope / h, 1e-4, "smooth low pass: zero slope at the transition's ends (C^1)");
+  bool monotone = true;
+  for (double w = 1.7; w < 2.3; w += 1e-3)
+  {
+    monotone = monotone && Gain(p, w + 1e-3) <= Gain(p, w);
+  }
+  Check(monotone, "smooth low pass: non-increasing");
+  FilterParameters high = p;
+  high.Kind = FilterKind::HighPass;
+  double complement = 0.0;
+  for (double w = 0.0; w < 4.0; w += 0.01)
+  {
+    complement = std::max(complement, std::abs(Gain(p, w) + Gain(high, w) - 1.0));
+  }
+  CheckBelow(complement, 1e-14, "high pass = 1 - low pass");
+
+  p.Kind = FilterKind::Enhancement;
+  p.Gain = 3.0;
+  Check(Gain(p, 0.0) == 1.0 && Gain(p, 1.8) == 1.0 && Gain(p, 2.2) == 3.0 && Gain(p, 100.0) == 3.0,
+    "enhancement: 1 below the transition, Gain above");
+  CheckNear(Gain(p, 2.0), 2.0, 1e-14, "enhancement: (1 + Gain) / 2 at the cutoff");
+}
+
+//------------------------------------------------------------------------------
+void BandShapes()
+{
+  FilterParameters p;
+  p.Cutoff = 2.0;
+  p.UpperCutoff = 6.0;
+  p.Transition = 0.1; // [1.9, 2.1] and [5.7, 6.3]
+  p.Kind = FilterKind::BandPass;
+  Check(Gain(p, 0.0) == 0.0 && Gain(p, 1.9) == 0.0 && Gain(p, 2.1) == 1.0 && Gain(p, 4.0) == 1.0 &&
+      Gain(p, 5.7) == 1.0 && Gain(p, 6.3) == 0.0 && Gain(p, 20.0) == 0.0,
+    "band pass: 0 outside, 1 inside the band");
+  CheckNear(Gain(p, 2.0), 0.5, 1e-14, "band pass: halfway at the lower edge");
+  CheckNear(Gain(p, 6.0), 0.5, 1e-14, "band pass: halfway at the upper edge");
+  const double slope = MaxSlope(p, 0.0, 8.0);
+  CheckBelow(slope, (1.0 + 1e-3) * Pi / (2.0 * 0.2), "band pass: continuous (largest slope)");
+
+  FilterParameters stop = p;
+  stop.Kind = FilterKind::BandStop;
+  FilterParameters exaggerate = p;
+  exaggerate.Kind = FilterKind::BandExaggeration;
+  exaggerate.Gain = 4.0;
+  double worstStop = 0.0;
+  double worstExaggeration = 0.0;
+  for (double w = 0.0; w < 10.0; w += 0.01)
+  {
+    worstStop = std::max(worstStop, std::abs(Gain(stop, w) - (1.0 - Gain(p, w))));
+    worstExaggeration =
+      std::max(worstExaggeration, std::abs(Gain(exaggerate, w) - (1.0 + 3.0 * Gain(p, w))));
+  }
+  CheckBelow(worstStop, 1e-14, "band stop = 1 - band pass");
+  CheckBelow(worstExaggeration, 1e-14, "band exaggeration = 1 + (Gain - 1) band pass");
+  Check(
+    Gain(exaggerate, 4.0) == 4.0 && Gain(exaggerate, 0.5) == 1.0 && Gain(exaggerate, 9.0) == 1.0,
+    "band exaggeration: Gain inside, 1 outside");
+
+  // Sharp edges: omega = cutoff counts as below each cutoff, so the band is (Cutoff, UpperCutoff].
+  p.Transition = 0.0;
+  Check(Gain(p, 2.0) == 0.0 && Gain(p, 2.0 + 1e-12) == 1.0 && Gain(p, 6.0) == 1.0 &&
+      Gain(p, 6.0 + 1e-12) == 0.0,
+    "sharp band pass: (Cutoff, UpperCutoff]");
+}
+
+//------------------------------------------------------------------------------
+void HeatAndCustomShapes()
+{
+  FilterParameters heat;
+  heat.Kind = FilterKind::HeatDiffusion;
+  heat.Time = 0.03;
+  const Vector lambda = (Vector(5) << -1e-14, 0.0, 2.0, 6.0, 110.0).finished();
+  const Vector g = Gains(heat, lambda);
+  double worst = 0.0;
+  for (Eigen::Index k = 1; k < lambda.size(); ++k)
+  {
+    worst = std::max(worst, std::abs(g[k] - std::exp(-0.03 * lambda[k])));
+  }
+  CheckBelow(worst, 1e-14, "heat diffusion: gains = exp(-t lambda)");
+  Check(g[0] == 1.0, "heat diffusion: a slightly negative eigenvalue counts as omega = 0");
+  CheckNear(Gain(heat, 3.0), std::exp(-0.27), 1e-15, "heat diffusion: F(omega) = exp(-t omega^2)");
+
+  FilterParameters custom;
+  custom.Kind = FilterKind::Custom;
+  custom.ControlPoints = { { 1.0, 2.0 }, { 3.0, 0.0 }, { 4.0, 1.0 } };
+  Check(Gain(custom, 0.0) == 2.0 && Gain(custom, 1.0) == 2.0 && Gain(custom, 3.0) == 0.0 &&
+      Gain(custom, 4.0) == 1.0 && Gain(custom, 50.0) == 1.0,
+    "custom: control values, constant beyond the ends");
+  CheckNear(Gain(custom, 2.5), 0.5, 1e-14, "custom: linear between control points");
+  CheckNear(Gain(custom, 3.25), 0.25, 1e-14, "custom: linear on the last segment");
+  custom.ControlPoints = { { 2.0, 0.7 } };
+  Check(Gain(custom, 0.0) == 0.7 && Gain(custom, 9.0) == 0.7, "custom: one point is a constant");
+}
+
+//------------------------------------------------------------------------------
+void InvalidParameters()
+{
+  auto throwsFor = [](FilterParameters p, double omega, const std::string& what) {
+    CheckThrows<InvalidInput>([&p, omega]() { Gain(p, omega); }, what);
+  };
+  FilterParameters p;
+  p.Cutoff = -1.0;
+  throwsFor(p, 1.0, "negative cutoff");
+  p = FilterParameters();
+  p.Transition = -0.1;
+  throwsFor(p, 1.0, "negative transition");
+  p = FilterParameters();
+  p.Kind = FilterKind::BandPass;
+  p.Cutoff = 3.0;
+  p.UpperCutoff = 2.0;
+  throwsFor(p, 1.0, "band pass with UpperCutoff < Cutoff");
+  p.Kind = FilterKind::LowPass;
+  Check(Gain(p, 1.0) == 1.0, "low pass ignores UpperCutoff");
+  p = FilterParameters();
+  p.Kind = FilterKind::HeatDiffusion;
+  p.Time = -1.0;
+  throwsFor(p, 1.0, "negative diffusion time");
+  p = FilterParameters();
+  p.Kind = FilterKind::Custom;
+  throwsFor(p, 1.0, "custom without control points");
+  p.ControlPoints = { { 1.0, 1.0 }, { 1.0, 2.0 } };
+  throwsFor(p, 1.0, "custom with a repeated omega");
+  p.ControlPoints = { { 2.0, 1.0 }, { 1.0, 2.0 } };
+  throwsFor(p, 1.0, "custom with decreasing omega");
+  p = FilterParameters();
+  p.Kind = static_cast<FilterKind>(42);
+  throwsFor(p, 1.0, "unknown kind");
+  p = FilterParameters();
+  throwsFor(p, -1.0, "negative omega");
+  throwsFor(p, std::numeric_limits<double>::quiet_NaN(), "NaN omega");
+  CheckThrows<InvalidInput>(
+    [&p]() { Gains(p, Vector::Constant(3, std::numeric_limits<double>::quiet_NaN())); },
+    "NaN eigenvalue");
+}
+
+/// Mean of F over [a, b] by the composite trapezoid rule on a fine grid.
+double TrapezoidMean(const FilterParameters& p, double a, double b)
+{
+  const int steps = 200000;
+  const double h = (b - a) / steps;
+  double sum = 0.5 * (Gain(p, a) + Gain(p, b));
+  for (int i = 1; i < steps; ++i)
+  {
+    sum += Gain(p, a + i * h);
+  }
+  return sum * h / (b - a);
+}
+
+//------------------------------------------------------------------------------
+void MeanGains()
+{
+  FilterParameters constant;
+  constant.Kind = FilterKind::Custom;
+  constant.ControlPoints = { { 3.0, 0.7 } };
+  CheckNear(MeanGain(constant, 1.0, 5.0), 0.7, 1e-14, "mean of a constant custom filter");
+  constant.Kind = FilterKind::Enhancement;
+  constant.Gain = 1.0;
+  CheckNear(MeanGain(constant, 0.5, 40.0), 1.0, 1e-14, "mean of enhancement with Gain 1");
+  constant.Kind = FilterKind::HeatDiffusion;
+  constant.Time = 0.0;
+  CheckNear(MeanGain(constant, 0.0, 40.0), 1.0, 0.0, "mean of heat diffusion at t = 0");
+
+  FilterParameters low;
+  low.Cutoff = 2.0;
+  for (double w : { 0.0, 0.3, 1.0 })
+  {
+    low.Transition = w;
+    CheckNear(MeanGain(low, 0.0, 4.0), 0.5, 1e-14,
+      "low pass over [0, 2 cutoff], transition " + std::to_string(w) + ": 1/2 by symmetry");
+  }
+  low.Transition = 0.3;
+  CheckNear(MeanGain(low, 2.5, 4.0), 0.0, 1e-14, "low pass above its transition: 0");
+  CheckNear(MeanGain(low, 3.0, 3.0), Gain(low, 3.0), 0.0, "empty interval: F(omegaLow)");
+  CheckNear(MeanGain(low, 1.0, 0.5), Gain(low, 1.0), 0.0, "reversed interval: F(omegaLow)");
+
+  FilterParameters heat;
+  heat.Kind = FilterKind::HeatDiffusion;
+  heat.Time = 0.02;
+  CheckNear(MeanGain(heat, 3.0, 25.0), TrapezoidMean(heat, 3.0, 25.0), 1e-9,
+    "heat diffusion mean (erfc) vs trapezoid rule");
+  heat.Time = 1e4;
+  CheckBelow(MeanGain(heat, 10.0, 30.0), 1e-300, "heat diffusion mean, large t: 0, no NaN");
+
+  FilterParameters band;
+  band.Kind = FilterKind::BandExaggeration;
+  band.Cutoff = 2.0;
+  band.UpperCutoff = 3.0;
+  band.Transition = 0.5;
+  band.Gain = 5.0;
+  CheckNear(MeanGain(band, 0.5, 7.0), TrapezoidMean(band, 0.5, 7.0), 1e-9,
+    "band exaggeration with overlapping transitions: quadrature vs trapezoid rule");
+  FilterParameters custom;
+  custom.Kind = FilterKind::Custom;
+  custom.ControlPoints = { { 1.0, 2.0 }, { 3.0, 0.0 }, { 4.0, 1.0 } };
+  // Integral over [0, 5]: 2 + 2 + 0.5 + 1 = 5.5.
+  CheckNear(MeanGain(custom, 0.0, 5.0), 5.5 / 5.0, 1e-14, "custom piecewise linear mean");
+}
+
+//------------------------------------------------------------------------------
+void HeatDiffusionLimits()
+{
+  // A complete basis (m = n) so that t -> 0 must give back the signal itself.
+  const Basis b = MakeBasis(Icosphere(2), 162);
+  const Eigen::Index n = b.H.rows();
+  RowMatrix X = RandomSignals(n, 3, 5u);
+  X.col(2) = b.Mesh.Vertices.col(2) + Vector::Constant(n, 4.0); // a smooth signal too
+  const RowMatrix coefficients = ForwardTransform(b.View(), b.Mass, View(X));
+  FilterParameters heat;
+  heat.Kind = FilterKind::HeatDiffusion;
+
+  heat.Time = 100.0;
+  const RowMatrix Y =
+    InverseTransform(b.View(), Gains(heat, b.Lambda), View(coefficients), NoSignal, 0.0);
+  double worst = 0.0;
+  for (Eigen::Index c = 0; c < 3; ++c)
+  {
+    const double mean = X.col(c).dot(b.Mass) / b.Mass.sum();
+    worst = std::max(worst, (Y.col(c).array() - mean).abs().maxCoeff());
+  }
+  CheckBelow(worst, 1e-10 * MaxAbs(X), "t = 100: every signal becomes its mass-weighted mean");
+
+  heat.Time = 0.0;
+  const RowMatrix same =
+    InverseTransform(b.View(), Gains(heat, b.Lambda), View(coefficients), NoSignal, 0.0);
+  CheckBelow(MaxAbs(same - X), 1e-10 * MaxAbs(X), "t = 0: identity");
+  heat.Time = 1e-13;
+  const RowMatrix close =
+    InverseTransform(b.View(), Gains(heat, b.Lambda), View(coefficients), NoSignal, 0.0);
+  CheckBelow(MaxAbs(close - X), 1e-9 * MaxAbs(X), "t = 1e-13: identity to 1e-9");
+
+  // With an incomplete basis, the heat kernel's high-frequency gain goes to 0 as t grows.
+  const Basis partial = MakeBasis(Icosphere(3), 30);
+  heat.Time = 100.0;
+  const double omegaM = std::sqrt(partial.Lambda[29]);
+  CheckBelow(MeanGain(heat, omegaM, NyquistFrequency(partial.Mesh)), 1e-12,
+    "t = 100: high-frequency gain above omega_m");
+}
+
+//------------------------------------------------------------------------------
+void Nyquist()
+{
+  const double h = (0.1 + 0.1 + std::sqrt(0.02)) / 3.0;
+  CheckNear(NyquistFrequency(Rectangle(2.0, 1.0, 20, 10)), Pi / h, 1e-12,
+    "Nyquist frequency of a 2 x 1 grid of 20 x 10 cells: pi / mean edge");
+  CheckThrows<InvalidInput>([]() { NyquistFrequency(TriangleMesh()); }, "mesh without triangles");
+}
+
+//------------------------------------------------------------------------------
+void InvalidSizes()
+{
+  const Basis b = MakeBasis(Icosphere(1), 10);
+  const RowMatrix X = RandomSignals(42, 3, 6u);
+  const RowMatrix shortX = RandomSignals(41, 3, 7u);
+  const RowMatrix C = ForwardTransform(b.View(), b.Mass, View(X));
+  const BasisView H = b.View();
+  const Vector& mass = b.Mass;
+  CheckThrows<InvalidInput>([&H, &mass, &shortX]() { ForwardTransform(H, mass, View(shortX)); },
+    "forward: signal with n - 1 rows");
+  CheckThrows<InvalidInput>([&H, &mass, &X]() { ForwardTransform(H, mass.head(41), View(X)); },
+    "forward: mass of length n - 1");
+  CheckThrows<InvalidInput>(
+    [&H, &C, &X]() { InverseTransform(H, Vector::Ones(9), View(C), View(X), 0.0); },
+    "inverse: m - 1 gains");
+  CheckThrows<InvalidInput>(
+    [&H, &C]() { InverseTransform(H, Vector::Ones(10), View(C), NoSignal, 0.5); },
+    "inverse: re-injection without the signal");
+  CheckThrows<InvalidInput>(
+    [&H, &C, &shortX]() { InverseTransform(H, Vector::Ones(10), View(C), View(shortX), 0.5); },
+    "inverse: signal with n - 1 rows");
+  const RowMatrix Y = InverseTransform(b.View(), Vector::Ones(10), View(C), NoSignal, 0.0);
+  Check(Y.rows() == 42 && Y.cols() == 3, "inverse without re-injection: n x c result");
+}
+
+const Case Cases[] = {
+  { "RoundTripFullBasis", RoundTripFullBasis },
+  { "ReinjectionAndProjection", ReinjectionAndProjection },
+  { "Linearity", Linearity },
+  { "StepShapes", StepShapes },
+  { "BandShapes", BandShapes },
+  { "HeatAndCustomShapes", HeatAndCustomShapes },
+  { "InvalidParameters", InvalidParameters },
+  { "MeanGains", MeanGains },
+  { "HeatDiffusionLimits", HeatDiffusionLimits },
+  { "Nyquist", Nyquist },
+  { "InvalidSizes", InvalidSizes },
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return RunCases(argc, argv, Cases);
+}
