@@ -1,0 +1,405 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Checks of vtkManifoldHarmonicBasis: output arrays, the spectrum of the unit sphere and of the
+// unit square, M-orthonormality, float/double inputs, abort, triangulation, unused points.
+
+#include "vtkManifoldHarmonicBasis.h"
+
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+//------------------------------------------------------------------------------
+bool Check(bool condition, const char* what)
+{
+  if (!condition)
+  {
+    std::cerr << "ERROR: " << what << std::endl;
+  }
+  return condition;
+}
+
+//------------------------------------------------------------------------------
+// Unit icosphere: the icosahedron with each triangle split in four `levels` times, points
+// projected onto the sphere (10 * 4^levels + 2 points).
+vtkSmartPointer<vtkPolyData> MakeIcosphere(int levels, int dataType)
+{
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  // clang-format off
+  std::vector<std::vector<double>> xyz = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 }, { 1, -t, 0 },
+    { 0, -1, t }, { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 },
+    { -t, 0, -1 }, { -t, 0, 1 } };
+  std::vector<std::vector<vtkIdType>> faces = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 },
+    { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 },
+    { 7, 1, 8 }, { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 },
+    { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
+  // clang-format on
+  for (int level = 0; level < levels; ++level)
+  {
+    std::map<std::pair<vtkIdType, vtkIdType>, vtkIdType> midpoints;
+    auto midpoint = [&xyz, &midpoints](vtkIdType a, vtkIdType b)
+    {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto found = midpoints.emplace(key, static_cast<vtkIdType>(xyz.size()));
+      if (found.second)
+      {
+        xyz.push_back({ (xyz[a][0] + xyz[b][0]) / 2,
+          (xyz[a][1] + xyz[b][1]) / 2,
+          (xyz[a][2] + xyz[b][2]) / 2 });
+      }
+      return found.first->second;
+    };
+    std::vector<std::vector<vtkIdType>> finer;
+    for (const auto& f : faces)
+    {
+      const vtkIdType ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]),
+                      ca = midpoint(f[2], f[0]);
+      finer.insert(
+        finer.end(), { { f[0], ab, ca }, { f[1], bc, ab }, { f[2], ca, bc }, { ab, bc, ca } });
+    }
+    faces.swap(finer);
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataType(dataType);
+  for (const auto& p : xyz)
+  {
+    const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    points->InsertNextPoint(p[0] / norm, p[1] / norm, p[2] / norm);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& f : faces)
+  {
+    polys->InsertNextCell({ f[0], f[1], f[2] });
+  }
+  auto sphere = vtkSmartPointer<vtkPolyData>::New();
+  sphere->SetPoints(points);
+  sphere->SetPolys(polys);
+  return sphere;
+}
+
+//------------------------------------------------------------------------------
+// Runs the filter with m harmonics and returns its output.
+vtkSmartPointer<vtkPolyData> Run(vtkPolyData* input, int m, vtkTest::ErrorObserver* observer)
+{
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetNumberOfHarmonics(m);
+  basis->SetInputData(input);
+  if (observer)
+  {
+    basis->AddObserver(vtkCommand::WarningEvent, observer);
+    basis->AddObserver(vtkCommand::ErrorEvent, observer);
+  }
+  basis->Update();
+  return basis->GetOutput();
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* Harmonics(vtkPolyData* output)
+{
+  return vtkDoubleArray::SafeDownCast(
+    output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()));
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* Mass(vtkPolyData* output)
+{
+  return vtkDoubleArray::SafeDownCast(
+    output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::MassArrayName()));
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* Eigenvalues(vtkPolyData* output)
+{
+  return vtkDoubleArray::SafeDownCast(
+    output->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName()));
+}
+
+//------------------------------------------------------------------------------
+bool TestArraysAndSphereSpectrum()
+{
+  auto sphere = MakeIcosphere(4, VTK_DOUBLE);
+  const int m = 12;
+  auto output = Run(sphere, m, nullptr);
+  vtkDoubleArray* H = Harmonics(output);
+  vtkDoubleArray* D = Mass(output);
+  vtkDoubleArray* lambda = Eigenvalues(output);
+  bool ok = Check(H && D && lambda, "the three output arrays exist with type double");
+  if (!ok)
+  {
+    return false;
+  }
+  const vtkIdType n = sphere->GetNumberOfPoints();
+  ok &= Check(H->GetNumberOfComponents() == m && H->GetNumberOfTuples() == n, "harmonics n x m");
+  ok &= Check(std::string(H->GetComponentName(0)) == "Phi_0" &&
+      std::string(H->GetComponentName(m - 1)) == "Phi_11",
+    "components named Phi_k");
+  ok &= Check(D->GetNumberOfComponents() == 1 && D->GetNumberOfTuples() == n, "mass n x 1");
+  ok &= Check(
+    lambda->GetNumberOfComponents() == 1 && lambda->GetNumberOfTuples() == m, "eigenvalues m x 1");
+  for (int k = 1; k < m; ++k)
+  {
+    ok &= Check(lambda->GetValue(k - 1) <= lambda->GetValue(k), "eigenvalues ascending");
+  }
+  ok &= Check(std::abs(lambda->GetValue(0)) < 1e-8, "lambda_0 = 0");
+  // Unit sphere: l(l+1) with multiplicity 2l+1 (the discretization error is below 1%).
+  for (int k = 1; k <= 3; ++k)
+  {
+    ok &= Check(std::abs(lambda->GetValue(k) - 2.0) < 0.02 * 2.0, "lambda_1..3 = 2");
+  }
+  for (int k = 4; k <= 8; ++k)
+  {
+    ok &= Check(std::abs(lambda->GetValue(k) - 6.0) < 0.02 * 6.0, "lambda_4..8 = 6");
+  }
+  ok &= Check(std::abs(lambda->GetValue(9) - 12.0) < 0.02 * 12.0, "lambda_9 = 12");
+  double area = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    area += D->GetValue(i);
+  }
+  ok &= Check(std::abs(area - 4.0 * Pi) < 0.01 * 4.0 * Pi, "sum of mass = sphere area");
+
+  // H^T D H = I, from the output arrays alone.
+  double worst = 0.0;
+  for (int k = 0; k < m; ++k)
+  {
+    for (int l = 0; l <= k; ++l)
+    {
+      double dot = 0.0;
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        dot += H->GetComponent(i, k) * D->GetValue(i) * H->GetComponent(i, l);
+      }
+      worst = std::max(worst, std::abs(dot - (k == l ? 1.0 : 0.0)));
+    }
+  }
+  ok &= Check(worst < 1e-10, "harmonics are orthonormal in the lumped mass");
+  if (!ok)
+  {
+    std::cerr << "Orthonormality error " << worst << "; eigenvalues:";
+    for (int k = 0; k < m; ++k)
+    {
+      std::cerr << ' ' << lambda->GetValue(k);
+    }
+    std::cerr << std::endl;
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Float points and the same values as doubles describe the same mesh: same eigenvalues.
+bool TestFloatAndDoublePoints()
+{
+  auto floatSphere = MakeIcosphere(3, VTK_FLOAT);
+  auto doubleSphere = vtkSmartPointer<vtkPolyData>::New();
+  doubleSphere->DeepCopy(floatSphere);
+  vtkNew<vtkPoints> doublePoints;
+  doublePoints->SetDataTypeToDouble();
+  doublePoints->DeepCopy(floatSphere->GetPoints());
+  doubleSphere->SetPoints(doublePoints);
+  bool ok = Check(vtkFloatArray::SafeDownCast(floatSphere->GetPoints()->GetData()) &&
+      vtkDoubleArray::SafeDownCast(doubleSphere->GetPoints()->GetData()),
+    "float and double inputs");
+
+  const int m = 10;
+  auto floatOutput = Run(floatSphere, m, nullptr);
+  auto doubleOutput = Run(doubleSphere, m, nullptr);
+  vtkDoubleArray* a = Eigenvalues(floatOutput);
+  vtkDoubleArray* b = Eigenvalues(doubleOutput);
+  ok &= Check(a && b, "eigenvalues for float and double points");
+  for (int k = 0; ok && k < m; ++k)
+  {
+    ok &= Check(std::abs(a->GetValue(k) - b->GetValue(k)) < 1e-10 * (1.0 + b->GetValue(k)),
+      "float and double points give the same eigenvalues");
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// The consistent mass gives the same sphere spectrum.
+bool TestConsistentMass()
+{
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetNumberOfHarmonics(9);
+  basis->SetMassMatrixToConsistent();
+  basis->SetInputData(MakeIcosphere(3, VTK_DOUBLE));
+  basis->Update();
+  vtkDoubleArray* lambda = Eigenvalues(basis->GetOutput());
+  bool ok = Check(lambda && lambda->GetNumberOfTuples() == 9, "consistent mass: eigenvalues");
+  if (!ok)
+  {
+    return false;
+  }
+  ok &= Check(std::abs(lambda->GetValue(0)) < 1e-8, "consistent mass: lambda_0 = 0");
+  for (int k = 1; k <= 3; ++k)
+  {
+    ok &= Check(std::abs(lambda->GetValue(k) - 2.0) < 0.03 * 2.0, "consistent mass: lambda = 2");
+  }
+  for (int k = 4; k <= 8; ++k)
+  {
+    ok &= Check(std::abs(lambda->GetValue(k) - 6.0) < 0.03 * 6.0, "consistent mass: lambda = 6");
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Sets AbortExecute on the filter once progress passes a threshold.
+class AbortAt : public vtkCommand
+{
+public:
+  static AbortAt* New() { return new AbortAt; }
+  void Execute(vtkObject* caller, unsigned long, void* callData) override
+  {
+    const double progress = *static_cast<double*>(callData);
+    if (progress >= this->Threshold)
+    {
+      vtkAlgorithm::SafeDownCast(caller)->AbortExecuteOn();
+      ++this->Aborts;
+    }
+  }
+  double Threshold = 0.0;
+  int Aborts = 0;
+};
+
+//------------------------------------------------------------------------------
+bool TestAbort()
+{
+  bool ok = true;
+  for (double threshold : { 0.0, 0.05, 0.2 })
+  {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    basis->SetNumberOfHarmonics(20);
+    basis->SetInputData(MakeIcosphere(4, VTK_DOUBLE));
+    vtkNew<AbortAt> abort;
+    abort->Threshold = threshold;
+    basis->AddObserver(vtkCommand::ProgressEvent, abort);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    basis->AddObserver(vtkCommand::ErrorEvent, errors);
+    basis->Update();
+    vtkPolyData* output = basis->GetOutput();
+    ok &= Check(abort->Aborts > 0, "the progress observer was called");
+    ok &= Check(!errors->GetError(), "abort is not an error");
+    ok &= Check(output->GetNumberOfPoints() == 0 && !Harmonics(output),
+      "an aborted execution leaves the output empty");
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// A plane source makes quads: they are triangulated with a warning. The Neumann spectrum of the
+// unit square is pi^2 (a^2 + b^2): 0, pi^2, pi^2, 2 pi^2, 4 pi^2, ...
+bool TestQuads()
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(30, 30);
+  plane->Update();
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  auto output = Run(plane->GetOutput(), 6, warnings);
+  bool ok = Check(warnings->CheckWarningMessage("Triangulating") == 0, "warned about quads");
+  vtkDoubleArray* lambda = output ? Eigenvalues(output) : nullptr;
+  ok &= Check(lambda && lambda->GetNumberOfTuples() == 6, "quads give eigenvalues");
+  if (!lambda)
+  {
+    return false;
+  }
+  const double pi2 = Pi * Pi;
+  ok &= Check(std::abs(lambda->GetValue(0)) < 1e-8, "square: lambda_0 = 0");
+  ok &= Check(std::abs(lambda->GetValue(1) - pi2) < 0.01 * pi2 &&
+      std::abs(lambda->GetValue(2) - pi2) < 0.01 * pi2,
+    "square: lambda_1,2 = pi^2");
+  ok &= Check(std::abs(lambda->GetValue(3) - 2 * pi2) < 0.01 * 2 * pi2, "square: lambda_3 = 2pi^2");
+  ok &= Check(output->GetNumberOfPolys() == plane->GetOutput()->GetNumberOfPolys(),
+    "the output keeps the input quads");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Points that no triangle uses (a free point, a vertex cell) get zero harmonics and mass.
+bool TestUnusedPoints()
+{
+  auto sphere = MakeIcosphere(2, VTK_DOUBLE);
+  const vtkIdType free = sphere->GetPoints()->InsertNextPoint(3.0, 0.0, 0.0);
+  const vtkIdType vertex = sphere->GetPoints()->InsertNextPoint(0.0, 3.0, 0.0);
+  vtkNew<vtkCellArray> verts;
+  verts->InsertNextCell({ vertex });
+  sphere->SetVerts(verts);
+
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  auto output = Run(sphere, 5, warnings);
+  bool ok =
+    Check(warnings->CheckWarningMessage("used by no triangle") == 0, "warned about unused points");
+  vtkDoubleArray* H = output ? Harmonics(output) : nullptr;
+  vtkDoubleArray* D = output ? Mass(output) : nullptr;
+  ok &= Check(H && D && H->GetNumberOfTuples() == sphere->GetNumberOfPoints(),
+    "harmonics on every input point");
+  if (!ok)
+  {
+    return false;
+  }
+  for (vtkIdType id : { free, vertex })
+  {
+    ok &= Check(D->GetValue(id) == 0.0, "unused point: zero mass");
+    for (int k = 0; k < 5; ++k)
+    {
+      ok &= Check(H->GetComponent(id, k) == 0.0, "unused point: zero harmonics");
+    }
+  }
+  ok &= Check(std::abs(H->GetComponent(0, 0)) > 0.1, "used point: constant harmonic");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// More harmonics than points: clamped with a warning. Empty input: passed through.
+bool TestClampAndEmpty()
+{
+  auto sphere = MakeIcosphere(0, VTK_DOUBLE);
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  auto output = Run(sphere, 50, warnings);
+  bool ok = Check(warnings->CheckWarningMessage("clamped to 12") == 0, "warned about clamp");
+  vtkDoubleArray* lambda = output ? Eigenvalues(output) : nullptr;
+  ok &= Check(lambda && lambda->GetNumberOfTuples() == 12, "clamped to the number of points");
+
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkTest::ErrorObserver> emptyWarnings;
+  auto passed = Run(empty, 10, emptyWarnings);
+  ok &= Check(emptyWarnings->GetWarning() && !emptyWarnings->GetError(), "empty input: warning");
+  ok &= Check(
+    passed && passed->GetNumberOfPoints() == 0 && !Harmonics(passed), "empty input passed through");
+  return ok;
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+int TestManifoldHarmonicBasis(int, char*[])
+{
+  bool ok = true;
+  ok &= TestArraysAndSphereSpectrum();
+  ok &= TestFloatAndDoublePoints();
+  ok &= TestConsistentMass();
+  ok &= TestAbort();
+  ok &= TestQuads();
+  ok &= TestUnusedPoints();
+  ok &= TestClampAndEmpty();
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
