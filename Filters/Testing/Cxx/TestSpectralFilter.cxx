@@ -1,0 +1,704 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Checks of vtkSpectralFilter: identity transfer, exact round trip with m = n, linearity, a
+// low-pass of a noisy sphere against vtkWindowedSincPolyDataFilter, colour and normal arrays,
+// heat diffusion limits, re-execution of the filter alone when its parameters change, and
+// the errors and warnings of inputs that lack the basis or the coefficients.
+
+#include "vtkSpectralFilter.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArraySelection.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkLinearSubdivisionFilter.h"
+#include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicTransform.h"
+#include "vtkMassProperties.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkNew.h"
+#include "vtkPlatonicSolidSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowedSincPolyDataFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+//------------------------------------------------------------------------------
+bool Check(bool condition, const std::string& what)
+{
+  if (!condition)
+  {
+    std::cerr << "ERROR: " << what << std::endl;
+  }
+  return condition;
+}
+
+//------------------------------------------------------------------------------
+// Counts the executions of an algorithm (its EndEvent).
+class ExecutionCounter : public vtkCommand
+{
+public:
+  vtkTypeMacro(ExecutionCounter, vtkCommand);
+  static ExecutionCounter* New() { return new ExecutionCounter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+//------------------------------------------------------------------------------
+// Basis -> transform -> spectral filter on one mesh.
+struct Pipeline
+{
+  vtkNew<vtkManifoldHarmonicBasis> Basis;
+  vtkNew<vtkManifoldHarmonicTransform> Transform;
+  vtkNew<vtkSpectralFilter> Filter;
+
+  Pipeline(vtkPolyData* mesh, int harmonics, const std::vector<std::string>& arrays)
+  {
+    this->Basis->SetInputData(mesh);
+    this->Basis->SetNumberOfHarmonics(harmonics);
+    this->Transform->SetInputConnection(this->Basis->GetOutputPort());
+    for (const auto& name : arrays)
+    {
+      this->Transform->GetPointDataArraySelection()->EnableArray(name.c_str());
+    }
+    this->Filter->SetInputConnection(this->Transform->GetOutputPort());
+  }
+  vtkPolyData* Run()
+  {
+    this->Filter->Update();
+    return this->Filter->GetOutput();
+  }
+  // Gain 1 at every frequency.
+  void SetIdentity()
+  {
+    this->Filter->SetFilterKindToCustom();
+    this->Filter->RemoveAllControlPoints();
+    this->Filter->AddControlPoint(0.0, 1.0);
+    this->Filter->AddControlPoint(1.0, 1.0);
+  }
+};
+
+//------------------------------------------------------------------------------
+// A sphere of radius 1 with double points and the arrays A (noise), B (smooth), Sum = A + B,
+// Colors (unsigned char RGB) and Normals (float).
+vtkSmartPointer<vtkPolyData> MakeSphere(int theta, int phi)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetThetaResolution(theta);
+  sphere->SetPhiResolution(phi);
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(sphere->GetOutputPort());
+  normals->SplittingOff();
+  normals->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(normals->GetOutput());
+
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(7);
+  vtkNew<vtkDoubleArray> a;
+  a->SetName("A");
+  a->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> b;
+  b->SetName("B");
+  b->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> sum;
+  sum->SetName("Sum");
+  sum->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    a->SetValue(i, random->GetNextRangeValue(-1.0, 1.0));
+    b->SetValue(i, 3.0 * p[2] * p[2] - 1.0 + p[0]);
+    sum->SetValue(i, a->GetValue(i) + b->GetValue(i));
+    for (int c = 0; c < 3; ++c)
+    {
+      colors->SetTypedComponent(i, c, static_cast<unsigned char>(127.5 * (p[c] + 1.0)));
+    }
+  }
+  mesh->GetPointData()->AddArray(a);
+  mesh->GetPointData()->AddArray(b);
+  mesh->GetPointData()->AddArray(sum);
+  mesh->GetPointData()->AddArray(colors);
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+// max |a - b| / max |b| over all values.
+double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
+{
+  double difference = 0.0;
+  double scale = 0.0;
+  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < b->GetNumberOfComponents(); ++c)
+    {
+      difference = std::max(difference, std::abs(a->GetComponent(i, c) - b->GetComponent(i, c)));
+      scale = std::max(scale, std::abs(b->GetComponent(i, c)));
+    }
+  }
+  return difference / scale;
+}
+
+//------------------------------------------------------------------------------
+bool AllFinite(vtkDataArray* array)
+{
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      if (!std::isfinite(array->GetComponent(i, c)))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Gain 1 everywhere with re-injection returns every signal, whatever m.
+bool TestIdentity()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "A", "Colors" });
+  pipeline.SetIdentity();
+  vtkPolyData* output = pipeline.Run();
+  const double points =
+    RelativeDifference(output->GetPoints()->GetData(), mesh->GetPoints()->GetData());
+  const double a = RelativeDifference(
+    output->GetPointData()->GetArray("A_Filtered"), mesh->GetPointData()->GetArray("A"));
+  const double colors = RelativeDifference(
+    output->GetPointData()->GetArray("Colors_Filtered"), mesh->GetPointData()->GetArray("Colors"));
+  std::cout << "Identity (m = 40 of " << mesh->GetNumberOfPoints() << ", re-injection): points "
+            << points << ", A " << a << ", Colors " << colors << std::endl;
+  bool ok = Check(points < 1e-10, "identity changes the points");
+  ok &= Check(a < 1e-10, "identity changes A");
+  ok &= Check(colors == 0.0, "identity changes the colours");
+
+  // Without re-injection the same transfer is the projection onto the m harmonics.
+  pipeline.Filter->ReinjectHighFrequenciesOff();
+  const double projected = RelativeDifference(
+    pipeline.Run()->GetPointData()->GetArray("A_Filtered"), mesh->GetPointData()->GetArray("A"));
+  std::cout << "Projection of the noise A onto 40 harmonics differs by " << projected << std::endl;
+  ok &= Check(projected > 0.1, "without re-injection the noise should be mostly removed");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// With m = n the basis is complete: transform then inverse is exact without re-injection.
+bool TestCompleteBasis()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(8, 8);
+  const int n = static_cast<int>(mesh->GetNumberOfPoints());
+  Pipeline pipeline(mesh, n, { "A", "Normals" });
+  pipeline.SetIdentity();
+  pipeline.Filter->ReinjectHighFrequenciesOff();
+  vtkPolyData* output = pipeline.Run();
+  const double points =
+    RelativeDifference(output->GetPoints()->GetData(), mesh->GetPoints()->GetData());
+  const double a = RelativeDifference(
+    output->GetPointData()->GetArray("A_Filtered"), mesh->GetPointData()->GetArray("A"));
+  const double normals = RelativeDifference(output->GetPointData()->GetArray("Normals_Filtered"),
+    mesh->GetPointData()->GetArray("Normals"));
+  std::cout << "Complete basis (m = n = " << n << "), no re-injection: points " << points << ", A "
+            << a << ", Normals (float) " << normals << std::endl;
+  bool ok = Check(points < 1e-10, "round trip with m = n changes the points");
+  ok &= Check(a < 1e-10, "round trip with m = n changes A");
+  ok &= Check(normals < 1e-6, "round trip with m = n changes the float normals");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool TestLinearity()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "A", "B", "Sum" });
+  pipeline.Filter->SetFilterKindToLowPass();
+  pipeline.Filter->SetCutoff(3.0);
+  vtkPointData* pd = pipeline.Run()->GetPointData();
+  vtkNew<vtkDoubleArray> sumOfFiltered;
+  sumOfFiltered->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    sumOfFiltered->SetValue(i,
+      pd->GetArray("A_Filtered")->GetComponent(i, 0) +
+        pd->GetArray("B_Filtered")->GetComponent(i, 0));
+  }
+  const double difference = RelativeDifference(pd->GetArray("Sum_Filtered"), sumOfFiltered);
+  std::cout << "Linearity: |F(A+B) - F(A) - F(B)| / |F(A+B)| = " << difference << std::endl;
+  return Check(difference < 1e-10, "the filter is not linear");
+}
+
+//------------------------------------------------------------------------------
+double RadialRMS(vtkPolyData* mesh)
+{
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    sum += std::pow(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0, 2);
+  }
+  return std::sqrt(sum / static_cast<double>(mesh->GetNumberOfPoints()));
+}
+
+//------------------------------------------------------------------------------
+double Volume(vtkPolyData* mesh)
+{
+  vtkNew<vtkMassProperties> mass;
+  mass->SetInputData(mesh);
+  mass->Update();
+  return mass->GetVolume();
+}
+
+//------------------------------------------------------------------------------
+// The windowed-sinc smoothing (over a grid of iterations and pass bands) whose radial error is
+// closest to `target`.
+vtkSmartPointer<vtkPolyData> MatchedWindowedSinc(vtkPolyData* noisy,
+  double target,
+  int& bestIterations,
+  double& bestPassBand)
+{
+  vtkSmartPointer<vtkPolyData> best;
+  double bestDistance = VTK_DOUBLE_MAX;
+  for (int iterations : { 10, 20, 50, 100 })
+  {
+    for (double passBand : { 0.5, 0.2, 0.1, 0.05, 0.02, 0.01 })
+    {
+      vtkNew<vtkWindowedSincPolyDataFilter> sinc;
+      sinc->SetInputData(noisy);
+      sinc->SetNumberOfIterations(iterations);
+      sinc->SetPassBand(passBand);
+      sinc->NormalizeCoordinatesOn();
+      sinc->Update();
+      const double distance = std::abs(RadialRMS(sinc->GetOutput()) - target);
+      if (distance < bestDistance)
+      {
+        bestDistance = distance;
+        best = sinc->GetOutput();
+        bestIterations = iterations;
+        bestPassBand = passBand;
+      }
+    }
+  }
+  return best;
+}
+
+//------------------------------------------------------------------------------
+// Unit icosphere: the icosahedron split `levels` times, points projected onto the sphere.
+vtkSmartPointer<vtkPolyData> MakeIcosphere(int levels)
+{
+  vtkNew<vtkPlatonicSolidSource> icosahedron;
+  icosahedron->SetSolidTypeToIcosahedron();
+  icosahedron->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  vtkNew<vtkLinearSubdivisionFilter> subdivide;
+  subdivide->SetInputConnection(icosahedron->GetOutputPort());
+  subdivide->SetNumberOfSubdivisions(levels);
+  subdivide->Update();
+  auto sphere = vtkSmartPointer<vtkPolyData>::New();
+  sphere->DeepCopy(subdivide->GetOutput());
+  sphere->GetPointData()->Initialize();
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    sphere->GetPoint(i, p);
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    sphere->GetPoints()->SetPoint(i, p[0] / r, p[1] / r, p[2] / r);
+  }
+  return sphere;
+}
+
+//------------------------------------------------------------------------------
+// Low-pass of a noisy unit sphere (radial noise, 1% of the radius RMS), against windowed sinc
+// tuned to the same noise reduction.
+bool TestNoisySphere()
+{
+  vtkSmartPointer<vtkPolyData> clean = MakeIcosphere(4);
+  auto noisy = vtkSmartPointer<vtkPolyData>::New();
+  noisy->DeepCopy(clean);
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(12345);
+  const double amplitude = 0.01 * std::sqrt(3.0); // uniform in [-a, a]: RMS a / sqrt(3)
+  for (vtkIdType i = 0; i < noisy->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    noisy->GetPoint(i, p);
+    const double scale = 1.0 + random->GetNextRangeValue(-amplitude, amplitude);
+    noisy->GetPoints()->SetPoint(i, scale * p[0], scale * p[1], scale * p[2]);
+  }
+
+  Pipeline pipeline(noisy, 100, {});
+  pipeline.Filter->SetFilterKindToLowPass();
+  pipeline.Filter->SetCutoff(6.0);
+  vtkPolyData* spectral = pipeline.Run();
+
+  const double noisyRMS = RadialRMS(noisy);
+  const double spectralRMS = RadialRMS(spectral);
+  int iterations = 0;
+  double passBand = 0.0;
+  vtkSmartPointer<vtkPolyData> sinc = MatchedWindowedSinc(noisy, spectralRMS, iterations, passBand);
+  const double sincRMS = RadialRMS(sinc);
+  const double cleanVolume = Volume(clean);
+  const double noisyVolume = Volume(noisy);
+  const double spectralChange = (Volume(spectral) - noisyVolume) / noisyVolume;
+  const double sincChange = (Volume(sinc) - noisyVolume) / noisyVolume;
+  std::cout << "Noisy unit sphere, " << noisy->GetNumberOfPoints() << " points, 100 harmonics, "
+            << "low-pass cutoff 6:\n"
+            << "  radial RMS error: noisy " << noisyRMS << ", spectral " << spectralRMS << " ("
+            << noisyRMS / spectralRMS << "x lower), windowed sinc closest to it (pass band "
+            << passBand << ", " << iterations << " iterations) " << sincRMS << " ("
+            << noisyRMS / sincRMS << "x lower)\n"
+            << "  volume change vs. noisy input: spectral " << 100.0 * spectralChange
+            << "%, windowed sinc " << 100.0 * sincChange << "%\n"
+            << "  volume vs. clean sphere mesh: noisy "
+            << 100.0 * (noisyVolume - cleanVolume) / cleanVolume << "%, spectral "
+            << 100.0 * (Volume(spectral) - cleanVolume) / cleanVolume << "%, windowed sinc "
+            << 100.0 * (Volume(sinc) - cleanVolume) / cleanVolume << "%" << std::endl;
+  // The other way round: the low-pass cutoff whose noise reduction is closest to windowed sinc's.
+  double matchedCutoff = 0.0;
+  double matchedChange = 0.0;
+  double matchedRMS = VTK_DOUBLE_MAX;
+  for (double cutoff : { 6.0, 7.0, 8.0, 9.0, 10.0 })
+  {
+    pipeline.Filter->SetCutoff(cutoff);
+    vtkPolyData* output = pipeline.Run();
+    if (std::abs(RadialRMS(output) - sincRMS) < std::abs(matchedRMS - sincRMS))
+    {
+      matchedRMS = RadialRMS(output);
+      matchedCutoff = cutoff;
+      matchedChange = (Volume(output) - noisyVolume) / noisyVolume;
+    }
+  }
+  std::cout << "  low-pass closest to windowed sinc's noise level: cutoff " << matchedCutoff
+            << ", radial RMS " << matchedRMS << " (" << noisyRMS / matchedRMS
+            << "x lower), volume change " << 100.0 * matchedChange << "%" << std::endl;
+  bool ok = Check(noisyRMS / spectralRMS >= 5.0, "low-pass reduces the noise less than 5x");
+  ok &= Check(std::abs(sincChange) > std::abs(matchedChange),
+    "windowed sinc changes the volume less than the low-pass of the same noise level");
+  ok &= Check(std::abs(spectralChange) < 0.005, "low-pass changes the volume by 0.5% or more");
+  ok &= Check(std::abs(sincChange) > std::abs(spectralChange),
+    "windowed sinc at the same noise reduction changes the volume less than the low-pass");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Colour (unsigned char RGB) and normal (float) arrays keep their type and shape.
+bool TestColorsAndNormals()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "Colors", "Normals" });
+  pipeline.Filter->SetFilterKindToEnhancement();
+  pipeline.Filter->SetCutoff(3.0);
+  pipeline.Filter->SetGain(3.0);
+  vtkPointData* pd = pipeline.Run()->GetPointData();
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  vtkDataArray* colors = pd->GetArray("Colors_Filtered");
+  vtkDataArray* normals = pd->GetArray("Normals_Filtered");
+  bool ok = Check(vtkUnsignedCharArray::SafeDownCast(colors) && colors->GetNumberOfTuples() == n &&
+      colors->GetNumberOfComponents() == 3,
+    "Colors_Filtered is not an n x 3 unsigned char array");
+  ok &= Check(vtkFloatArray::SafeDownCast(normals) && normals->GetNumberOfTuples() == n &&
+      normals->GetNumberOfComponents() == 3 && AllFinite(normals),
+    "Normals_Filtered is not a finite n x 3 float array");
+  ok &= Check(pd->GetNormals() == mesh->GetPointData()->GetNormals(),
+    "the input normals are not kept when ReplaceInput is off");
+
+  // Enhancement overshoots the colour range: the values are clamped, not wrapped.
+  pipeline.Filter->ReplaceInputOn();
+  pd = pipeline.Run()->GetPointData();
+  colors = pd->GetArray("Colors");
+  ok &= Check(vtkUnsignedCharArray::SafeDownCast(colors) &&
+      colors != mesh->GetPointData()->GetArray("Colors"),
+    "ReplaceInput does not replace the colours with an unsigned char array");
+  ok &= Check(!pd->GetArray("Colors_Filtered"), "ReplaceInput still adds Colors_Filtered");
+  ok &= Check(vtkFloatArray::SafeDownCast(pd->GetNormals()) &&
+      pd->GetNormals() == pd->GetArray("Normals") &&
+      pd->GetNormals() != mesh->GetPointData()->GetNormals(),
+    "ReplaceInput does not keep the filtered normals as the active normals");
+  double range[2];
+  colors->GetRange(range, -1);
+  std::cout << "Enhanced colours (gain 3 above cutoff 3): magnitude range [" << range[0] << ", "
+            << range[1] << "]" << std::endl;
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Mass-weighted mean of each component of `array` on the basis output.
+std::vector<double> MassWeightedMean(vtkPolyData* basis, vtkDataArray* array)
+{
+  vtkDataArray* mass = basis->GetPointData()->GetArray(vtkManifoldHarmonicBasis::MassArrayName());
+  std::vector<double> mean(array->GetNumberOfComponents(), 0.0);
+  double total = 0.0;
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    total += mass->GetComponent(i, 0);
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      mean[c] += mass->GetComponent(i, 0) * array->GetComponent(i, c);
+    }
+  }
+  for (double& value : mean)
+  {
+    value /= total;
+  }
+  return mean;
+}
+
+//------------------------------------------------------------------------------
+// Largest distance of the values of `array` to `mean`.
+double DistanceToMean(vtkDataArray* array, const std::vector<double>& mean)
+{
+  double distance = 0.0;
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+    {
+      distance = std::max(distance, std::abs(array->GetComponent(i, c) - mean[c]));
+    }
+  }
+  return distance;
+}
+
+//------------------------------------------------------------------------------
+bool TestHeatDiffusion()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "A", "B" });
+  pipeline.Filter->SetFilterKindToHeatDiffusion();
+  bool ok = true;
+  for (double time : { 0.0, 1e-14 })
+  {
+    pipeline.Filter->SetTime(time);
+    vtkPolyData* output = pipeline.Run();
+    const double points =
+      RelativeDifference(output->GetPoints()->GetData(), mesh->GetPoints()->GetData());
+    const double a = RelativeDifference(
+      output->GetPointData()->GetArray("A_Filtered"), mesh->GetPointData()->GetArray("A"));
+    std::cout << "Heat diffusion t = " << time << ": points " << points << ", A " << a << std::endl;
+    ok &= Check(points < 1e-10 && a < 1e-10, "heat diffusion with t -> 0 is not the identity");
+  }
+
+  pipeline.Filter->SetTime(1e3);
+  vtkPolyData* output = pipeline.Run();
+  vtkPolyData* basis = pipeline.Basis->GetOutput();
+  const char* names[] = { "A", "B" };
+  for (const char* name : names)
+  {
+    vtkDataArray* input = mesh->GetPointData()->GetArray(name);
+    const double distance =
+      DistanceToMean(output->GetPointData()->GetArray((std::string(name) + "_Filtered").c_str()),
+        MassWeightedMean(basis, input));
+    std::cout << "Heat diffusion t = 1000: " << name << " within " << distance
+              << " of its mass-weighted mean" << std::endl;
+    ok &= Check(distance < 1e-8, std::string(name) + " does not tend to its mean");
+  }
+  const double centroid = DistanceToMean(
+    output->GetPoints()->GetData(), MassWeightedMean(basis, mesh->GetPoints()->GetData()));
+  std::cout << "Heat diffusion t = 1000: points within " << centroid << " of the centroid"
+            << std::endl;
+  ok &= Check(centroid < 1e-8, "points do not tend to the centroid");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// The output's coefficients describe its signals, so filters chain: without re-injection, heat
+// diffusion for t1 then t2 equals heat diffusion for t1 + t2.
+bool TestChaining()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "A" });
+  pipeline.Filter->SetFilterKindToHeatDiffusion();
+  pipeline.Filter->SetTime(0.01);
+  pipeline.Filter->ReinjectHighFrequenciesOff();
+  pipeline.Filter->ReplaceInputOn();
+  vtkNew<vtkSpectralFilter> second;
+  second->SetInputConnection(pipeline.Filter->GetOutputPort());
+  second->SetFilterKindToHeatDiffusion();
+  second->SetTime(0.02);
+  second->ReinjectHighFrequenciesOff();
+  second->ReplaceInputOn();
+  second->Update();
+  vtkNew<vtkPolyData> twice;
+  twice->DeepCopy(second->GetOutput());
+  pipeline.Filter->SetTime(0.03);
+  vtkPolyData* once = pipeline.Run();
+  const double points =
+    RelativeDifference(twice->GetPoints()->GetData(), once->GetPoints()->GetData());
+  const double a =
+    RelativeDifference(twice->GetPointData()->GetArray("A"), once->GetPointData()->GetArray("A"));
+  std::cout << "Heat diffusion 0.01 then 0.02 vs. 0.03: points " << points << ", A " << a
+            << std::endl;
+  return Check(points < 1e-10 && a < 1e-10, "chained heat diffusions do not add up");
+}
+
+//------------------------------------------------------------------------------
+// Counts the progress events strictly between 0 and 1 (the executive reports 0 before and 1
+// after RequestData) and asks the filter to abort at the first one.
+class AbortAtFirstProgress : public vtkCommand
+{
+public:
+  vtkTypeMacro(AbortAtFirstProgress, vtkCommand);
+  static AbortAtFirstProgress* New() { return new AbortAtFirstProgress; }
+  void Execute(vtkObject* caller, unsigned long, void* callData) override
+  {
+    const double progress = *static_cast<double*>(callData);
+    if (progress > 0.0 && progress < 1.0)
+    {
+      ++this->Count;
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    }
+  }
+  int Count = 0;
+};
+
+//------------------------------------------------------------------------------
+// An abort requested during execution stops the filter after the current signal, cleanly.
+bool TestAbort()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 20, { "A", "B", "Sum" });
+  pipeline.Transform->Update();
+  vtkNew<AbortAtFirstProgress> abort;
+  pipeline.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
+  pipeline.Run();
+  std::cout << "Abort: " << abort->Count << " progress event(s) for 4 signals" << std::endl;
+  return Check(abort->Count == 1, "the filter does not stop when asked to abort");
+}
+
+//------------------------------------------------------------------------------
+// A point that no triangle uses is not part of the surface and stays where it is.
+bool TestUnusedPoint()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  sphere->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(sphere->GetOutput());
+  mesh->GetPointData()->Initialize();
+  const vtkIdType stray = mesh->GetPoints()->InsertNextPoint(5.0, 5.0, 5.0);
+  Pipeline pipeline(mesh, 20, {});
+  pipeline.Filter->SetCutoff(2.0);
+  double p[3];
+  pipeline.Run()->GetPoint(stray, p);
+  std::cout << "Unused point after a low-pass: (" << p[0] << ", " << p[1] << ", " << p[2] << ")"
+            << std::endl;
+  return Check(p[0] == 5.0 && p[1] == 5.0 && p[2] == 5.0, "the unused point moved");
+}
+
+//------------------------------------------------------------------------------
+// Changing the filter's parameters re-executes the filter alone.
+bool TestInteractive()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 40, { "A" });
+  vtkNew<ExecutionCounter> basisRuns;
+  vtkNew<ExecutionCounter> transformRuns;
+  vtkNew<ExecutionCounter> filterRuns;
+  pipeline.Basis->AddObserver(vtkCommand::EndEvent, basisRuns);
+  pipeline.Transform->AddObserver(vtkCommand::EndEvent, transformRuns);
+  pipeline.Filter->AddObserver(vtkCommand::EndEvent, filterRuns);
+  pipeline.Run();
+  pipeline.Filter->SetCutoff(2.0);
+  pipeline.Run();
+  pipeline.Filter->SetFilterKindToBandStop();
+  pipeline.Filter->SetUpperCutoff(4.0);
+  pipeline.Filter->ReplaceInputOn();
+  pipeline.Run();
+  pipeline.Filter->SetFilterKindToCustom();
+  pipeline.Filter->SetNumberOfControlPoints(3);
+  pipeline.Filter->SetControlPoint(0, 0.0, 1.0);
+  pipeline.Filter->SetControlPoint(1, 3.0, 1.0);
+  pipeline.Filter->SetControlPoint(2, 5.0, 0.0);
+  pipeline.Run();
+  pipeline.Run();
+  std::cout << "Executions after 5 updates and 4 parameter changes: basis " << basisRuns->Count
+            << ", transform " << transformRuns->Count << ", filter " << filterRuns->Count
+            << std::endl;
+  bool ok = Check(basisRuns->Count == 1, "parameter changes re-execute the basis");
+  ok &= Check(transformRuns->Count == 1, "parameter changes re-execute the transform");
+  ok &= Check(filterRuns->Count == 4, "the filter does not re-execute exactly once per change");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// The text of a VTK error or warning without its "ERROR: In file, line" prefix, which the test
+// harness would take for a failure.
+std::string AfterLocation(const std::string& message)
+{
+  const std::size_t start = message.find("): ");
+  return start == std::string::npos ? message : message.substr(start + 2);
+}
+
+//------------------------------------------------------------------------------
+bool TestMissingInputs()
+{
+  bool ok = true;
+  vtkNew<vtkSphereSource> sphere;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkTest::ErrorObserver> executiveErrors;
+  vtkNew<vtkSpectralFilter> filter;
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->AddObserver(vtkCommand::WarningEvent, errors);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  filter->SetInputConnection(sphere->GetOutputPort());
+  filter->Update();
+  std::cout << "Expected error:" << AfterLocation(errors->GetErrorMessage());
+  ok &= Check(
+    errors->CheckErrorMessage("ManifoldHarmonicBasis") == 0, "no clear error without the basis");
+
+  // The basis without the transform: nothing to filter, a warning, and the input passes.
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputConnection(sphere->GetOutputPort());
+  basis->SetNumberOfHarmonics(10);
+  filter->SetInputConnection(basis->GetOutputPort());
+  filter->Update();
+  std::cout << "Expected warning:" << AfterLocation(errors->GetWarningMessage());
+  ok &= Check(errors->CheckWarningMessage("ManifoldHarmonicTransform") == 0,
+    "no warning without coefficients");
+  ok &= Check(filter->GetOutput()->GetNumberOfPoints() == sphere->GetOutput()->GetNumberOfPoints(),
+    "the input does not pass through");
+  return ok;
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+int TestSpectralFilter(int, char*[])
+{
+  bool ok = true;
+  ok &= TestIdentity();
+  ok &= TestCompleteBasis();
+  ok &= TestLinearity();
+  ok &= TestNoisySphere();
+  ok &= TestColorsAndNormals();
+  ok &= TestHeatDiffusion();
+  ok &= TestChaining();
+  ok &= TestUnusedPoint();
+  ok &= TestAbort();
+  ok &= TestInteractive();
+  ok &= TestMissingInputs();
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}

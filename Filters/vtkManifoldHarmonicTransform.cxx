@@ -1,0 +1,254 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkManifoldHarmonicTransform.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkDataArraySelection.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicsArrays.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+
+#include <cmath>
+#include <exception>
+#include <string>
+#include <utility>
+#include <vector>
+
+vtkStandardNewMacro(vtkManifoldHarmonicTransform);
+
+namespace
+{
+using vtkManifoldHarmonicsArrays::Concatenate;
+
+/// A signal to transform: its name in the output and the array holding it.
+using NamedSignal = std::pair<std::string, vtkDataArray*>;
+
+void SelectionModified(vtkObject*, unsigned long, void* clientData, void*)
+{
+  static_cast<vtkManifoldHarmonicTransform*>(clientData)->Modified();
+}
+
+bool IsBasisArray(const char* name)
+{
+  const std::string text(name);
+  return text == vtkManifoldHarmonicBasis::HarmonicsArrayName() ||
+    text == vtkManifoldHarmonicBasis::MassArrayName();
+}
+
+/// The signals to transform: the coordinates, then the enabled point-data arrays in input order.
+std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPolyData* input)
+{
+  std::vector<NamedSignal> signals;
+  const bool points = self->GetTransformPoints();
+  if (points)
+  {
+    signals.emplace_back(vtkManifoldHarmonicTransform::PointsName(), input->GetPoints()->GetData());
+  }
+  vtkPointData* pointData = input->GetPointData();
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pointData->GetArray(a);
+    const char* name = array ? array->GetName() : nullptr;
+    if (!name || IsBasisArray(name) || !self->GetPointDataArraySelection()->ArrayIsEnabled(name))
+    {
+      continue;
+    }
+    if (points && std::string(name) == vtkManifoldHarmonicTransform::PointsName())
+    {
+      vtkWarningWithObjectMacro(self,
+        << "Point-data array '" << name
+        << "' is skipped: its coefficients would replace those of the points.");
+      continue;
+    }
+    signals.emplace_back(name, array);
+  }
+  return signals;
+}
+
+/// The Index, Eigenvalue and Frequency columns of the spectrum.
+void AddFrequencyColumns(const spectral::Vector& lambda, vtkTable* spectrum)
+{
+  const vtkIdType m = lambda.size();
+  vtkNew<vtkIdTypeArray> index;
+  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
+  index->SetNumberOfTuples(m);
+  vtkNew<vtkDoubleArray> eigenvalue;
+  eigenvalue->SetName(vtkManifoldHarmonicTransform::EigenvalueColumnName());
+  eigenvalue->SetNumberOfTuples(m);
+  vtkNew<vtkDoubleArray> frequency;
+  frequency->SetName(vtkManifoldHarmonicTransform::FrequencyColumnName());
+  frequency->SetNumberOfTuples(m);
+  for (vtkIdType k = 0; k < m; ++k)
+  {
+    index->SetValue(k, k);
+    eigenvalue->SetValue(k, lambda[k]);
+    frequency->SetValue(k, std::sqrt(std::max(lambda[k], 0.0)));
+  }
+  spectrum->AddColumn(index);
+  spectrum->AddColumn(eigenvalue);
+  spectrum->AddColumn(frequency);
+}
+
+/// The Euclidean norm of each coefficient tuple, as a spectrum column.
+vtkSmartPointer<vtkDoubleArray> Magnitudes(const spectral::RowMatrix& coefficients,
+  const std::string& name)
+{
+  const spectral::RowMatrix norms = coefficients.rowwise().norm();
+  return vtkManifoldHarmonicsArrays::NewDoubleArray(norms, name.c_str());
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+vtkManifoldHarmonicTransform::vtkManifoldHarmonicTransform()
+  : PointDataArraySelection(vtkDataArraySelection::New())
+  , SelectionObserver(vtkCallbackCommand::New())
+{
+  this->TransformPoints = true;
+  this->SetNumberOfOutputPorts(2);
+  this->SelectionObserver->SetCallback(&SelectionModified);
+  this->SelectionObserver->SetClientData(this);
+  this->PointDataArraySelection->AddObserver(vtkCommand::ModifiedEvent, this->SelectionObserver);
+}
+
+//------------------------------------------------------------------------------
+vtkManifoldHarmonicTransform::~vtkManifoldHarmonicTransform()
+{
+  this->PointDataArraySelection->RemoveObserver(this->SelectionObserver);
+  this->SelectionObserver->Delete();
+  this->PointDataArraySelection->Delete();
+}
+
+//------------------------------------------------------------------------------
+vtkDataArraySelection* vtkManifoldHarmonicTransform::GetPointDataArraySelection()
+{
+  return this->PointDataArraySelection;
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkManifoldHarmonicTransform::GetSpectrumOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::CoefficientsSuffix()
+{
+  return "_Coefficients";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::MagnitudeSuffix()
+{
+  return "_Magnitude";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::PointsName()
+{
+  return "Points";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::IndexColumnName()
+{
+  return "Index";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::EigenvalueColumnName()
+{
+  return "Eigenvalue";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicTransform::FrequencyColumnName()
+{
+  return "Frequency";
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicTransform::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
+  output->ShallowCopy(input);
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro(<< "No data to transform!");
+    return 1;
+  }
+
+  vtkManifoldHarmonicsArrays::Basis basis;
+  const std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+
+  const std::vector<NamedSignal> signals = SelectSignals(this, input);
+  vtkDebugMacro(<< "Transforming " << signals.size() << " signals on " << basis.NumberOfPoints
+                << " points with " << basis.NumberOfHarmonics << " harmonics.");
+
+  this->SetProgressText("Transform");
+  try
+  {
+    const spectral::BasisView H = basis.HarmonicsView();
+    const spectral::Vector mass = basis.MassVector();
+    AddFrequencyColumns(basis.EigenvalueVector(), spectrum);
+    for (std::size_t s = 0; s < signals.size(); ++s)
+    {
+      const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
+      const spectral::RowMatrix coefficients = spectral::ForwardTransform(H, mass, signal.View());
+      const std::string coefficientsName =
+        Concatenate(signals[s].first.c_str(), CoefficientsSuffix());
+      output->GetFieldData()->AddArray(
+        vtkManifoldHarmonicsArrays::NewDoubleArray(coefficients, coefficientsName.c_str()));
+      spectrum->AddColumn(
+        Magnitudes(coefficients, Concatenate(signals[s].first.c_str(), MagnitudeSuffix())));
+      this->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
+      if (this->GetAbortExecute())
+      {
+        return 1;
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Manifold harmonic transform failed: " << e.what());
+    return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicTransform::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off") << "\n";
+  os << indent << "PointDataArraySelection: (empty by default)\n";
+  this->PointDataArraySelection->PrintSelf(os, indent.GetNextIndent());
+}

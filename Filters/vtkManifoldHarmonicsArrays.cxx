@@ -1,0 +1,220 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkManifoldHarmonicsArrays.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkManifoldHarmonicBasis.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace
+{
+/// Copies the values of any array into an n by c row-major matrix of doubles.
+struct ReadValues
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array, spectral::RowMatrix& out) const
+  {
+    const auto values = vtk::DataArrayValueRange(array);
+    out.resize(array->GetNumberOfTuples(), array->GetNumberOfComponents());
+    std::copy(values.begin(), values.end(), out.data());
+  }
+};
+
+/// Writes a row-major matrix into an array sized to match, rounding and clamping when asked.
+struct WriteValues
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array,
+    const spectral::RowMatrix& values,
+    bool integral,
+    double low,
+    double high) const
+  {
+    using ValueT = vtk::GetAPIType<ArrayT>;
+    auto range = vtk::DataArrayValueRange(array);
+    const double* source = values.data();
+    for (auto&& value : range)
+    {
+      double v = *source++;
+      if (integral)
+      {
+        v = std::isnan(v) ? 0.0 : std::round(std::min(std::max(v, low), high));
+      }
+      value = static_cast<ValueT>(v);
+    }
+  }
+};
+
+std::string Missing(const char* what, const char* name)
+{
+  std::ostringstream message;
+  message << "Missing " << what << " '" << name
+          << "': compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
+  return message.str();
+}
+
+std::string Mismatch(const char* name, vtkIdType found, const char* what, vtkIdType expected)
+{
+  std::ostringstream message;
+  message << "Array '" << name << "' has " << found << " " << what << " where " << expected
+          << " are expected: recompute the basis with ManifoldHarmonicBasis "
+             "(vtkManifoldHarmonicBasis) on this mesh.";
+  return message.str();
+}
+} // anonymous namespace
+
+namespace vtkManifoldHarmonicsArrays
+{
+//------------------------------------------------------------------------------
+spectral::BasisView Basis::HarmonicsView() const
+{
+  return spectral::BasisView(
+    this->Harmonics->GetPointer(0), this->NumberOfPoints, this->NumberOfHarmonics);
+}
+
+//------------------------------------------------------------------------------
+spectral::Vector Basis::MassVector() const
+{
+  return Signal(this->Mass).View().col(0);
+}
+
+//------------------------------------------------------------------------------
+spectral::Vector Basis::EigenvalueVector() const
+{
+  return Signal(this->Eigenvalues).View().col(0);
+}
+
+//------------------------------------------------------------------------------
+std::string FindBasis(vtkPolyData* input, Basis& basis)
+{
+  const char* harmonicsName = vtkManifoldHarmonicBasis::HarmonicsArrayName();
+  const char* massName = vtkManifoldHarmonicBasis::MassArrayName();
+  const char* eigenvaluesName = vtkManifoldHarmonicBasis::EigenvaluesArrayName();
+  vtkDataArray* harmonics = input->GetPointData()->GetArray(harmonicsName);
+  basis.Mass = input->GetPointData()->GetArray(massName);
+  basis.Eigenvalues = input->GetFieldData()->GetArray(eigenvaluesName);
+  if (!harmonics)
+  {
+    return Missing("point data array", harmonicsName);
+  }
+  if (!basis.Mass)
+  {
+    return Missing("point data array", massName);
+  }
+  if (!basis.Eigenvalues)
+  {
+    return Missing("field data array", eigenvaluesName);
+  }
+  basis.Harmonics = vtkArrayDownCast<vtkDoubleArray>(harmonics);
+  if (!basis.Harmonics)
+  {
+    return std::string("Array '") + harmonicsName + "' is a " + harmonics->GetClassName() +
+      ", not the vtkDoubleArray that ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) writes.";
+  }
+  basis.NumberOfPoints = input->GetNumberOfPoints();
+  basis.NumberOfHarmonics = basis.Harmonics->GetNumberOfComponents();
+  if (basis.Harmonics->GetNumberOfTuples() != basis.NumberOfPoints)
+  {
+    return Mismatch(
+      harmonicsName, basis.Harmonics->GetNumberOfTuples(), "tuples (points)", basis.NumberOfPoints);
+  }
+  if (basis.Mass->GetNumberOfTuples() != basis.NumberOfPoints)
+  {
+    return Mismatch(
+      massName, basis.Mass->GetNumberOfTuples(), "tuples (points)", basis.NumberOfPoints);
+  }
+  if (basis.Mass->GetNumberOfComponents() != 1)
+  {
+    return Mismatch(massName, basis.Mass->GetNumberOfComponents(), "components", 1);
+  }
+  if (basis.Eigenvalues->GetNumberOfValues() != basis.NumberOfHarmonics)
+  {
+    return Mismatch(eigenvaluesName,
+      basis.Eigenvalues->GetNumberOfValues(),
+      "values (harmonics)",
+      basis.NumberOfHarmonics);
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+Signal::Signal(vtkDataArray* array)
+  : Rows(array->GetNumberOfTuples())
+  , Cols(array->GetNumberOfComponents())
+{
+  if (auto* doubles = vtkArrayDownCast<vtkAOSDataArrayTemplate<double>>(array))
+  {
+    this->Data = doubles->GetPointer(0);
+    return;
+  }
+  ReadValues worker;
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::AllTypes>::Execute(
+        array, worker, this->Converted))
+  {
+    worker(array, this->Converted);
+  }
+  this->Data = this->Converted.data();
+}
+
+//------------------------------------------------------------------------------
+spectral::ConstRowView Signal::View() const
+{
+  return spectral::ConstRowView(this->Data, this->Rows, this->Cols);
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkDoubleArray> NewDoubleArray(const spectral::RowMatrix& values, const char* name)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(static_cast<int>(values.cols()));
+  array->SetNumberOfTuples(values.rows());
+  std::copy(values.data(), values.data() + values.size(), array->GetPointer(0));
+  return array;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
+  const spectral::RowMatrix& values,
+  const char* name)
+{
+  vtkSmartPointer<vtkDataArray> array;
+  array.TakeReference(prototype->NewInstance());
+  array->SetName(name);
+  array->SetNumberOfComponents(static_cast<int>(values.cols()));
+  array->SetNumberOfTuples(values.rows());
+  for (int c = 0; c < prototype->GetNumberOfComponents() && c < values.cols(); ++c)
+  {
+    if (const char* componentName = prototype->GetComponentName(c))
+    {
+      array->SetComponentName(c, componentName);
+    }
+  }
+  const int type = array->GetDataType();
+  const bool integral = type != VTK_FLOAT && type != VTK_DOUBLE;
+  const double low = array->GetDataTypeMin();
+  // Just below the top of the range, so that 64-bit maxima (not representable) stay in range.
+  const double high = std::nextafter(array->GetDataTypeMax(), 0.0);
+  WriteValues worker;
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::AllTypes>::Execute(
+        array.Get(), worker, values, integral, low, high))
+  {
+    worker(array.Get(), values, integral, low, high);
+  }
+  return array;
+}
+
+//------------------------------------------------------------------------------
+std::string Concatenate(const char* name, const char* suffix)
+{
+  return std::string(name ? name : "") + suffix;
+}
+} // namespace vtkManifoldHarmonicsArrays

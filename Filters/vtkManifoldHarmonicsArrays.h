@@ -1,0 +1,85 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkManifoldHarmonicsArrays.h
+ * @brief Private helpers shared by vtkManifoldHarmonicTransform and vtkSpectralFilter.
+ *
+ * They find and check the arrays of vtkManifoldHarmonicBasis on a data set, view VTK arrays as
+ * Eigen matrices (without a copy for vtkDoubleArray) and write Eigen matrices back into VTK
+ * arrays. Not installed and not wrapped: this header includes Eigen.
+ */
+#ifndef vtkManifoldHarmonicsArrays_h
+#define vtkManifoldHarmonicsArrays_h
+
+#include "Spectral/Transfer.h"
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+
+class vtkDataArray;
+class vtkDoubleArray;
+class vtkPolyData;
+
+namespace vtkManifoldHarmonicsArrays
+{
+/// The basis arrays of a data set as written by vtkManifoldHarmonicBasis.
+struct Basis
+{
+  /// n tuples of m components: component k of tuple i is H^k_i.
+  vtkDoubleArray* Harmonics = nullptr;
+  /// n tuples, one component: the lumped mass D_ii.
+  vtkDataArray* Mass = nullptr;
+  /// m tuples, one component, ascending.
+  vtkDataArray* Eigenvalues = nullptr;
+  vtkIdType NumberOfPoints = 0;
+  int NumberOfHarmonics = 0;
+
+  /// The harmonics as an n by m row-major matrix, viewing the array's memory.
+  spectral::BasisView HarmonicsView() const;
+  /// The mass as a vector of length n.
+  spectral::Vector MassVector() const;
+  /// The eigenvalues as a vector of length m.
+  spectral::Vector EigenvalueVector() const;
+};
+
+/**
+ * Find the basis arrays on a data set and check that they agree with it and with each other.
+ * \return An empty string on success, otherwise a message naming the missing or inconsistent
+ *         array and the filter that produces it.
+ */
+std::string FindBasis(vtkPolyData* input, Basis& basis);
+
+/**
+ * The values of a data array as an n by c row-major matrix of doubles: a view of the array's
+ * memory for a vtkDoubleArray, a copy converted once to double for any other array type.
+ */
+class Signal
+{
+public:
+  explicit Signal(vtkDataArray* array);
+  spectral::ConstRowView View() const;
+
+private:
+  spectral::RowMatrix Converted;
+  const double* Data = nullptr;
+  Eigen::Index Rows = 0;
+  Eigen::Index Cols = 0;
+};
+
+/// A vtkDoubleArray of rows tuples with cols components holding a copy of values.
+vtkSmartPointer<vtkDoubleArray> NewDoubleArray(const spectral::RowMatrix& values, const char* name);
+
+/**
+ * A new array of the same type as `prototype` (NewInstance) holding `values`. Integer types get
+ * the values rounded to the nearest integer and clamped to the range of the type.
+ */
+vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
+  const spectral::RowMatrix& values,
+  const char* name);
+
+/// `name` + `suffix`.
+std::string Concatenate(const char* name, const char* suffix);
+} // namespace vtkManifoldHarmonicsArrays
+
+#endif

@@ -1,0 +1,388 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSpectralFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkManifoldHarmonicTransform.h"
+#include "vtkManifoldHarmonicsArrays.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkSpectralFilter);
+
+namespace
+{
+using vtkManifoldHarmonicsArrays::Concatenate;
+
+/// A signal to filter: its name, its coefficients and the array it was computed from.
+struct FilterJob
+{
+  std::string Name;
+  vtkDataArray* Coefficients;
+  vtkDataArray* Source;
+  bool IsPoints;
+};
+
+/// The triangles of the polygons (as fans) and strips of a mesh, for its Nyquist frequency.
+spectral::TriangleMesh ToTriangleMesh(vtkPolyData* input)
+{
+  spectral::TriangleMesh mesh;
+  mesh.Vertices = vtkManifoldHarmonicsArrays::Signal(input->GetPoints()->GetData()).View();
+  std::vector<int> corners;
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
+  {
+    polygons->GetCurrentCell(size, ids);
+    for (vtkIdType c = 1; c + 1 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    strips->GetCurrentCell(size, ids);
+    for (vtkIdType c = 0; c + 2 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
+    }
+  }
+  mesh.Faces = Eigen::Map<const spectral::Triangles>(
+    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
+  return mesh;
+}
+
+/// The signals to filter: every <Signal>_Coefficients field array whose signal is on the input.
+/// \return An error message if coefficients disagree with the basis or their signal.
+std::string FindJobs(vtkSpectralFilter* self,
+  vtkPolyData* input,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  std::vector<FilterJob>& jobs)
+{
+  const std::string suffix = vtkManifoldHarmonicTransform::CoefficientsSuffix();
+  vtkFieldData* fieldData = input->GetFieldData();
+  for (int a = 0; a < fieldData->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* coefficients = fieldData->GetArray(a);
+    const std::string arrayName =
+      coefficients && coefficients->GetName() ? coefficients->GetName() : "";
+    if (arrayName.size() <= suffix.size() ||
+      arrayName.compare(arrayName.size() - suffix.size(), suffix.size(), suffix) != 0)
+    {
+      continue;
+    }
+    const std::string name = arrayName.substr(0, arrayName.size() - suffix.size());
+    const bool isPoints = name == vtkManifoldHarmonicTransform::PointsName();
+    vtkDataArray* source =
+      isPoints ? input->GetPoints()->GetData() : input->GetPointData()->GetArray(name.c_str());
+    if (!source)
+    {
+      vtkWarningWithObjectMacro(self,
+        << "Coefficients '" << arrayName << "' skipped: no point-data array '" << name << "'.");
+      continue;
+    }
+    if (coefficients->GetNumberOfTuples() != basis.NumberOfHarmonics ||
+      coefficients->GetNumberOfComponents() != source->GetNumberOfComponents())
+    {
+      return "Coefficients '" + arrayName + "' have " +
+        std::to_string(coefficients->GetNumberOfTuples()) + " x " +
+        std::to_string(coefficients->GetNumberOfComponents()) + " values where " +
+        std::to_string(basis.NumberOfHarmonics) + " x " +
+        std::to_string(source->GetNumberOfComponents()) +
+        " are expected: recompute them with ManifoldHarmonicTransform.";
+    }
+    jobs.push_back({ name, coefficients, source, isPoints });
+  }
+  return std::string();
+}
+
+/// The parameters of the core transfer function.
+spectral::FilterParameters Parameters(vtkSpectralFilter* self)
+{
+  spectral::FilterParameters parameters;
+  parameters.Kind = static_cast<spectral::FilterKind>(self->GetFilterKind());
+  parameters.Cutoff = self->GetCutoff();
+  parameters.UpperCutoff = self->GetUpperCutoff();
+  parameters.Transition = self->GetTransition();
+  parameters.Gain = self->GetGain();
+  parameters.Time = self->GetTime();
+  for (int i = 0; i < self->GetNumberOfControlPoints(); ++i)
+  {
+    double point[2];
+    self->GetControlPoint(i, point);
+    parameters.ControlPoints.emplace_back(point[0], point[1]);
+  }
+  return parameters;
+}
+
+/// Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
+double HighFrequencyGain(const spectral::FilterParameters& parameters,
+  vtkPolyData* input,
+  const spectral::Vector& lambda)
+{
+  const double highestComputed = std::sqrt(std::max(lambda.maxCoeff(), 0.0));
+  const double nyquist = spectral::NyquistFrequency(ToTriangleMesh(input));
+  return spectral::MeanGain(parameters, highestComputed, nyquist);
+}
+
+/// Points that no triangle uses (zero mass, zero harmonics) are not part of the surface: they
+/// keep their input values instead of being scaled by the high-frequency gain.
+void KeepUnusedPoints(const spectral::Vector& mass,
+  const vtkManifoldHarmonicsArrays::Signal& x,
+  spectral::RowMatrix& y)
+{
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+  {
+    if (mass[i] == 0.0)
+    {
+      y.row(i) = x.View().row(i);
+    }
+  }
+}
+
+/// Store a filtered signal: new points, or a new or replacing point-data array. The
+/// coefficients of a replaced signal become those of the filtered one.
+void WriteSignal(const FilterJob& job,
+  const spectral::RowMatrix& values,
+  const spectral::RowMatrix& filteredCoefficients,
+  bool replaceInput,
+  vtkPolyData* output)
+{
+  const bool replace = job.IsPoints || replaceInput;
+  const std::string name =
+    replace ? job.Name : Concatenate(job.Name.c_str(), vtkSpectralFilter::FilteredSuffix());
+  const char* arrayName = job.IsPoints ? job.Source->GetName() : name.c_str();
+  vtkSmartPointer<vtkDataArray> filtered =
+    vtkManifoldHarmonicsArrays::NewArrayLike(job.Source, values, arrayName);
+  if (job.IsPoints)
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(filtered);
+    output->SetPoints(points);
+  }
+  else
+  {
+    output->GetPointData()->AddArray(filtered);
+  }
+  if (replace)
+  {
+    output->GetFieldData()->AddArray(vtkManifoldHarmonicsArrays::NewDoubleArray(
+      filteredCoefficients, job.Coefficients->GetName()));
+  }
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+vtkSpectralFilter::vtkSpectralFilter()
+  : ControlPoints(vtkDoubleArray::New())
+{
+  this->FilterKind = LOW_PASS;
+  this->Cutoff = 1.0;
+  this->UpperCutoff = 2.0;
+  this->Transition = 0.1;
+  this->Gain = 2.0;
+  this->Time = 0.0;
+  this->ReinjectHighFrequencies = true;
+  this->ReplaceInput = false;
+  this->ControlPoints->SetNumberOfComponents(2);
+  this->AddControlPoint(0.0, 1.0);
+  this->AddControlPoint(1.0, 0.0);
+}
+
+//------------------------------------------------------------------------------
+vtkSpectralFilter::~vtkSpectralFilter()
+{
+  this->ControlPoints->Delete();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralFilter::FilteredSuffix()
+{
+  return "_Filtered";
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::SetNumberOfControlPoints(int count)
+{
+  count = std::max(count, 0);
+  const vtkIdType old = this->ControlPoints->GetNumberOfTuples();
+  if (count == old)
+  {
+    return;
+  }
+  this->ControlPoints->Resize(count);
+  this->ControlPoints->SetNumberOfTuples(count);
+  for (vtkIdType i = old; i < count; ++i)
+  {
+    this->ControlPoints->SetTypedComponent(i, 0, 0.0);
+    this->ControlPoints->SetTypedComponent(i, 1, 1.0);
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralFilter::GetNumberOfControlPoints()
+{
+  return static_cast<int>(this->ControlPoints->GetNumberOfTuples());
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::SetControlPoint(int index, double omega, double gain)
+{
+  if (index < 0 || index >= this->GetNumberOfControlPoints())
+  {
+    vtkErrorMacro(<< "Control point " << index << " out of range [0, "
+                  << this->GetNumberOfControlPoints() << ").");
+    return;
+  }
+  if (this->ControlPoints->GetTypedComponent(index, 0) == omega &&
+    this->ControlPoints->GetTypedComponent(index, 1) == gain)
+  {
+    return;
+  }
+  this->ControlPoints->SetTypedComponent(index, 0, omega);
+  this->ControlPoints->SetTypedComponent(index, 1, gain);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::GetControlPoint(int index, double point[2])
+{
+  if (index < 0 || index >= this->GetNumberOfControlPoints())
+  {
+    vtkErrorMacro(<< "Control point " << index << " out of range [0, "
+                  << this->GetNumberOfControlPoints() << ").");
+    return;
+  }
+  this->ControlPoints->GetTypedTuple(index, point);
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::AddControlPoint(double omega, double gain)
+{
+  const double point[2] = { omega, gain };
+  this->ControlPoints->InsertNextTypedTuple(point);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::RemoveAllControlPoints()
+{
+  if (this->ControlPoints->GetNumberOfTuples() > 0)
+  {
+    this->ControlPoints->SetNumberOfTuples(0);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  output->ShallowCopy(input);
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro(<< "No data to filter!");
+    return 1;
+  }
+
+  vtkManifoldHarmonicsArrays::Basis basis;
+  const std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+
+  std::vector<FilterJob> jobs;
+  const std::string mismatch = FindJobs(this, input, basis, jobs);
+  if (!mismatch.empty())
+  {
+    vtkErrorMacro(<< mismatch);
+    return 0;
+  }
+  if (jobs.empty())
+  {
+    vtkWarningMacro(<< "Nothing to filter: no '<Array>"
+                    << vtkManifoldHarmonicTransform::CoefficientsSuffix()
+                    << "' field data; apply ManifoldHarmonicTransform upstream.");
+    return 1;
+  }
+
+  this->SetProgressText("Spectral filter");
+  try
+  {
+    const spectral::FilterParameters parameters = Parameters(this);
+    const spectral::Vector lambda = basis.EigenvalueVector();
+    const spectral::Vector gains = spectral::Gains(parameters, lambda);
+    const double highFrequencyGain =
+      this->ReinjectHighFrequencies ? HighFrequencyGain(parameters, input, lambda) : 0.0;
+    vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", Cutoff " << this->Cutoff
+                  << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
+                  << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "
+                  << highFrequencyGain);
+    const spectral::BasisView H = basis.HarmonicsView();
+    const spectral::Vector mass = basis.MassVector();
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+    {
+      const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
+      const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
+      spectral::RowMatrix y =
+        spectral::InverseTransform(H, gains, coefficients.View(), x.View(), highFrequencyGain);
+      KeepUnusedPoints(mass, x, y);
+      WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
+      this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
+      if (this->GetAbortExecute())
+      {
+        return 1;
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Spectral filter failed: " << e.what());
+    return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FilterKind: " << this->FilterKind << " (default 0, LOW_PASS)\n";
+  os << indent << "Cutoff: " << this->Cutoff << " (default 1)\n";
+  os << indent << "UpperCutoff: " << this->UpperCutoff << " (default 2)\n";
+  os << indent << "Transition: " << this->Transition << " (default 0.1)\n";
+  os << indent << "Gain: " << this->Gain << " (default 2)\n";
+  os << indent << "Time: " << this->Time << " (default 0)\n";
+  os << indent << "ControlPoints:";
+  for (vtkIdType i = 0; i < this->ControlPoints->GetNumberOfTuples(); ++i)
+  {
+    os << " (" << this->ControlPoints->GetTypedComponent(i, 0) << ", "
+       << this->ControlPoints->GetTypedComponent(i, 1) << ")";
+  }
+  os << " (default (0, 1) (1, 0))\n";
+  os << indent << "ReinjectHighFrequencies: " << (this->ReinjectHighFrequencies ? "On" : "Off")
+     << " (default On)\n";
+  os << indent << "ReplaceInput: " << (this->ReplaceInput ? "On" : "Off") << " (default Off)\n";
+}

@@ -1,0 +1,216 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkSpectralFilter
+ * @brief Filter the geometry and point data of a mesh in the manifold harmonic basis.
+ *
+ * vtkSpectralFilter multiplies the manifold harmonic coefficients x~_k of a signal by a transfer
+ * function F evaluated at the frequency omega_k = sqrt(lambda_k) of each harmonic, and sums the
+ * harmonics back:
+ *
+ *   y = sum_k F(omega_k) x~_k H^k + g_hf (x - sum_k x~_k H^k),
+ *
+ * (B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics", Computer
+ * Graphics Forum 27(2), 2008, section 5). The last term re-injects the details that the m
+ * computed harmonics do not represent, with the mean gain g_hf of F over [omega_m, omega_N]
+ * (eq. 10 of the paper), where omega_m = sqrt(lambda_{m-1}) is the highest computed frequency
+ * and omega_N = pi / (mean edge length) the Nyquist frequency of the mesh. Without it
+ * (ReinjectHighFrequencies off) the output lies in the span of the m harmonics.
+ *
+ * Input: the output of vtkManifoldHarmonicTransform, i.e. the basis arrays of
+ * vtkManifoldHarmonicBasis plus field-data arrays `<Signal>_Coefficients`. Every signal that has
+ * coefficients and whose source still exists is filtered (choose the signals on the transform):
+ * - `Points_Coefficients`: the filtered coordinates always replace the points (same precision
+ *   as the input points).
+ * - `<Array>_Coefficients`: the filtered array is added as `<Array>_Filtered`, or replaces
+ *   `<Array>` when ReplaceInput is on. Either way it has the type of the input array
+ *   (NewInstance); integer arrays (e.g. unsigned char colours) are rounded and clamped to their
+ *   type's range.
+ * The coefficients of a replaced signal are replaced by the filtered ones, F(omega_k) x~_k, so
+ * that the output can feed another vtkSpectralFilter. Points that no triangle uses (zero mass)
+ * keep their input values.
+ *
+ * Transfer functions (FilterKind; each step is a raised cosine whose relative width is
+ * Transition, 0 for a sharp step):
+ * - LOW_PASS (0): 1 below Cutoff, 0 above.          - HIGH_PASS (1): 0 below Cutoff, 1 above.
+ * - BAND_PASS (2): 1 in [Cutoff, UpperCutoff].       - BAND_STOP (3): 0 in [Cutoff, UpperCutoff].
+ * - ENHANCEMENT (4): 1 below Cutoff, Gain above.
+ * - BAND_EXAGGERATION (5): Gain in [Cutoff, UpperCutoff], 1 outside.
+ * - HEAT_DIFFUSION (6): exp(-Time omega^2), the heat kernel after time Time.
+ * - CUSTOM (7): piecewise linear through the control points (omega, gain), constant beyond them.
+ * Frequencies are in radians per unit length of the mesh: omega = 2 pi / wavelength.
+ *
+ * The filter keeps no state that affects its input: changing its parameters re-executes only
+ * this filter, not the basis nor the transform upstream, so it can be driven interactively.
+ *
+ * @warning The basis is read in place (no copy). The cost is n * m * c multiply-adds per signal.
+ * Missing basis arrays, or arrays that disagree on n or m, are errors.
+ *
+ * Example: Examples/Cxx/ManifoldHarmonicFilter.cxx. Test: Filters/Testing/Cxx/
+ * TestSpectralFilter.cxx.
+ *
+ * @sa vtkManifoldHarmonicBasis vtkManifoldHarmonicTransform vtkWindowedSincPolyDataFilter
+ */
+#ifndef vtkSpectralFilter_h
+#define vtkSpectralFilter_h
+
+#include "vtkManifoldHarmonicsModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkDoubleArray;
+
+class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkPolyDataAlgorithm
+{
+public:
+  ///@{
+  /**
+   * Standard methods for instantiation, type information, and printing.
+   */
+  static vtkSpectralFilter* New();
+  vtkTypeMacro(vtkSpectralFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  ///@}
+
+  /**
+   * The transfer functions; the values match the ParaView enumeration and spectral::FilterKind.
+   */
+  enum FilterKinds
+  {
+    LOW_PASS = 0,
+    HIGH_PASS = 1,
+    BAND_PASS = 2,
+    BAND_STOP = 3,
+    ENHANCEMENT = 4,
+    BAND_EXAGGERATION = 5,
+    HEAT_DIFFUSION = 6,
+    CUSTOM = 7
+  };
+
+  ///@{
+  /**
+   * The transfer function F (see the class documentation). Default is LOW_PASS.
+   */
+  vtkSetClampMacro(FilterKind, int, LOW_PASS, CUSTOM);
+  vtkGetMacro(FilterKind, int);
+  void SetFilterKindToLowPass() { this->SetFilterKind(LOW_PASS); }
+  void SetFilterKindToHighPass() { this->SetFilterKind(HIGH_PASS); }
+  void SetFilterKindToBandPass() { this->SetFilterKind(BAND_PASS); }
+  void SetFilterKindToBandStop() { this->SetFilterKind(BAND_STOP); }
+  void SetFilterKindToEnhancement() { this->SetFilterKind(ENHANCEMENT); }
+  void SetFilterKindToBandExaggeration() { this->SetFilterKind(BAND_EXAGGERATION); }
+  void SetFilterKindToHeatDiffusion() { this->SetFilterKind(HEAT_DIFFUSION); }
+  void SetFilterKindToCustom() { this->SetFilterKind(CUSTOM); }
+  ///@}
+
+  ///@{
+  /**
+   * Cutoff frequency omega_c (radians per unit length): the edge of LOW_PASS, HIGH_PASS and
+   * ENHANCEMENT, the lower band edge of the band kinds. Compare with the Frequency column of the
+   * transform's spectrum. Range [0, VTK_DOUBLE_MAX]. Default is 1.
+   */
+  vtkSetClampMacro(Cutoff, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Cutoff, double);
+  ///@}
+
+  ///@{
+  /**
+   * Upper band edge of BAND_PASS, BAND_STOP and BAND_EXAGGERATION; must not be below Cutoff.
+   * Range [0, VTK_DOUBLE_MAX]. Default is 2.
+   */
+  vtkSetClampMacro(UpperCutoff, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(UpperCutoff, double);
+  ///@}
+
+  ///@{
+  /**
+   * Width of each smooth step relative to its cutoff: the step runs over
+   * [omega_c (1 - Transition/2), omega_c (1 + Transition/2)]. 0 is a sharp step. Range [0, 2].
+   * Default is 0.1.
+   */
+  vtkSetClampMacro(Transition, double, 0.0, 2.0);
+  vtkGetMacro(Transition, double);
+  ///@}
+
+  ///@{
+  /**
+   * Gain of ENHANCEMENT (above Cutoff) and BAND_EXAGGERATION (inside the band). Default is 2.
+   */
+  vtkSetMacro(Gain, double);
+  vtkGetMacro(Gain, double);
+  ///@}
+
+  ///@{
+  /**
+   * Diffusion time t of HEAT_DIFFUSION, F = exp(-t omega^2); 0 is the identity, large t leaves
+   * the mass-weighted mean. In squared units of length. Range [0, VTK_DOUBLE_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(Time, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Time, double);
+  ///@}
+
+  ///@{
+  /**
+   * Control points (omega, gain) of the CUSTOM transfer function, with strictly increasing
+   * omega; F is linear between them and constant beyond the first and the last. Default:
+   * (0, 1) and (1, 0), a linear ramp from 1 to 0. SetNumberOfControlPoints keeps the first
+   * points and appends (0, 1) points, to be set with SetControlPoint (ParaView sets the count,
+   * then each point).
+   */
+  void SetNumberOfControlPoints(int count);
+  int GetNumberOfControlPoints();
+  void SetControlPoint(int index, double omega, double gain);
+  void GetControlPoint(int index, double point[2]);
+  void AddControlPoint(double omega, double gain);
+  void RemoveAllControlPoints();
+  ///@}
+
+  ///@{
+  /**
+   * Re-inject the frequencies above the last computed harmonic, scaled by the mean gain of F
+   * between omega_m and the Nyquist frequency (eq. 10 of Vallet and Levy). Off drops them: the
+   * output is then made of the m harmonics only. Default is on.
+   */
+  vtkSetMacro(ReinjectHighFrequencies, bool);
+  vtkGetMacro(ReinjectHighFrequencies, bool);
+  vtkBooleanMacro(ReinjectHighFrequencies, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Replace the point-data arrays by their filtered version (same name) instead of adding
+   * `<Array>_Filtered`. The point coordinates are always replaced. Default is off.
+   */
+  vtkSetMacro(ReplaceInput, bool);
+  vtkGetMacro(ReplaceInput, bool);
+  vtkBooleanMacro(ReplaceInput, bool);
+  ///@}
+
+  /**
+   * Suffix of the filtered arrays added when ReplaceInput is off: `_Filtered`.
+   */
+  static const char* FilteredSuffix();
+
+protected:
+  vtkSpectralFilter();
+  ~vtkSpectralFilter() override;
+
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int FilterKind;
+  double Cutoff;
+  double UpperCutoff;
+  double Transition;
+  double Gain;
+  double Time;
+  bool ReinjectHighFrequencies;
+  bool ReplaceInput;
+  vtkDoubleArray* ControlPoints;
+
+private:
+  vtkSpectralFilter(const vtkSpectralFilter&) = delete;
+  void operator=(const vtkSpectralFilter&) = delete;
+};
+
+#endif
