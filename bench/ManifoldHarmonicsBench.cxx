@@ -1,0 +1,310 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Benchmark of the manifold harmonic basis: for each (n, m) case it builds a noisy torus of about
+ * n points, assembles the cotan stiffness and lumped mass, computes the m smallest eigenpairs and
+ * prints one table row: n, m, wall time and its split, peak resident memory, the largest relative
+ * residual and the M-orthonormality error. With --scipy it also solves the same matrices with
+ * scipy.sparse.linalg.eigsh in shift-invert mode (through /usr/bin/python3) and prints the speed
+ * ratio and the largest eigenvalue difference.
+ *
+ * Each case runs in a child process so that its peak memory is its own.
+ *
+ * With --filter it also times the filter stage (gains, inverse transform and re-injection of
+ * the point coordinates), the part that re-runs when a user changes the filter.
+ *
+ * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--filter] [--scipy]
+ *        [--scipy-max-n N] [--workdir DIR]
+ * Default cases: 10000:100 100000:500.
+ */
+#include "BenchMeshes.h"
+#include "EigenSolver.h"
+#include "Operators.h"
+#include "Transfer.h"
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+struct Settings
+{
+  std::vector<std::pair<int, int>> Cases;
+  int BandSize = 0;
+  bool Scipy = false;
+  bool Filter = false;
+  int ScipyMaxN = 200000;
+  std::string WorkDir = "/tmp";
+  std::string ScriptDir = ".";
+};
+
+double Since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Write a sparse symmetric matrix in Matrix Market coordinate format (lower triangle).
+void WriteMatrixMarket(const spectral::SparseMatrix& A, const std::string& path)
+{
+  std::ofstream out(path);
+  int entries = 0;
+  for (int j = 0; j < A.outerSize(); ++j)
+  {
+    for (spectral::SparseMatrix::InnerIterator it(A, j); it; ++it)
+    {
+      entries += (it.row() >= it.col()) ? 1 : 0;
+    }
+  }
+  out << "%%MatrixMarket matrix coordinate real symmetric\n";
+  out << A.rows() << " " << A.cols() << " " << entries << "\n";
+  out.precision(17);
+  for (int j = 0; j < A.outerSize(); ++j)
+  {
+    for (spectral::SparseMatrix::InnerIterator it(A, j); it; ++it)
+    {
+      if (it.row() >= it.col())
+      {
+        out << it.row() + 1 << " " << it.col() + 1 << " " << it.value() << "\n";
+      }
+    }
+  }
+}
+
+/// Solve with scipy; returns the wall time of eigsh (negative on failure) and fills lambda.
+double RunScipy(const Settings& settings, const spectral::SparseMatrix& L,
+  const spectral::SparseMatrix& M, int m, std::vector<double>& lambda)
+{
+  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
+  WriteMatrixMarket(L, base + "-L.mtx");
+  WriteMatrixMarket(M, base + "-M.mtx");
+  const std::string command = "/usr/bin/python3 " + settings.ScriptDir +
+    "/scipy_reference.py " + base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " " +
+    base + "-out.txt";
+  const int status = std::system(command.c_str());
+  std::remove((base + "-L.mtx").c_str());
+  std::remove((base + "-M.mtx").c_str());
+  std::ifstream in(base + "-out.txt");
+  double seconds = -1.0;
+  if (status != 0 || !(in >> seconds))
+  {
+    return -1.0;
+  }
+  double value = 0.0;
+  while (in >> value)
+  {
+    lambda.push_back(value);
+  }
+  std::remove((base + "-out.txt").c_str());
+  return seconds;
+}
+
+/**
+ * Median wall time in milliseconds of the filter stage for the point coordinates: gains of a
+ * low-pass, the inverse transform and the re-injection of high frequencies, on the basis stored
+ * point by point (n by m, row-major) as the VTK arrays hold it. `threads` row ranges run at once,
+ * as the VTK filter does with vtkSMPTools.
+ */
+double FilterStageMilliseconds(const spectral::RowMatrix& basis, const spectral::Vector& lambda,
+  const spectral::RowMatrix& points, const spectral::RowMatrix& coefficients, int threads)
+{
+  spectral::FilterParameters parameters;
+  parameters.Kind = spectral::FilterKind::LowPass;
+  parameters.Cutoff = 0.5 * std::sqrt(lambda[lambda.size() - 1]);
+  const Eigen::Index n = basis.rows();
+  spectral::RowMatrix out(n, points.cols());
+  std::vector<double> samples;
+  for (int repeat = 0; repeat < 21; ++repeat)
+  {
+    const Clock::time_point start = Clock::now();
+    const spectral::Vector gains = spectral::Gains(parameters, lambda);
+    const double hf = spectral::MeanGain(parameters, std::sqrt(lambda[lambda.size() - 1]),
+      10.0 * std::sqrt(lambda[lambda.size() - 1]));
+    auto work = [&](Eigen::Index first, Eigen::Index count) {
+      const spectral::BasisView H(basis.row(first).data(), count, basis.cols());
+      const spectral::ConstRowView X(points.row(first).data(), count, points.cols());
+      const spectral::ConstRowView C(coefficients.data(), coefficients.rows(), coefficients.cols());
+      out.middleRows(first, count) = spectral::InverseTransform(H, gains, C, X, hf);
+    };
+    std::vector<std::thread> pool;
+    const Eigen::Index chunk = (n + threads - 1) / threads;
+    for (int t = 1; t < threads; ++t)
+    {
+      const Eigen::Index first = std::min(n, t * chunk);
+      pool.emplace_back(work, first, std::min(chunk, n - first));
+    }
+    work(0, std::min(chunk, n));
+    for (auto& thread : pool)
+    {
+      thread.join();
+    }
+    samples.push_back(1000.0 * Since(start));
+  }
+  std::sort(samples.begin(), samples.end());
+  return samples[samples.size() / 2];
+}
+
+/// One case, run in the child process. Prints its row and returns an exit code.
+int RunCase(const Settings& settings, int n, int m)
+{
+  const spectral::TriangleMesh mesh = spectral::bench::NoisyTorusOfSize(n, 0.02);
+  const Clock::time_point start = Clock::now();
+  const spectral::SparseMatrix L = spectral::CotanStiffness(mesh);
+  const spectral::SparseMatrix M = spectral::Diagonal(spectral::LumpedMass(mesh));
+  const double assembly = Since(start);
+
+  spectral::EigenOptions options;
+  options.NumberOfEigenpairs = m;
+  options.BandSize = settings.BandSize;
+  spectral::EigenResult result;
+  try
+  {
+    result = spectral::SmallestEigenpairs(L, M, options);
+  }
+  catch (const std::exception& e)
+  {
+    std::printf("%8d %6d  failed: %s\n", static_cast<int>(L.rows()), m, e.what());
+    return 1;
+  }
+  const double total = Since(start);
+  const double orthogonality = spectral::OrthonormalityError(result.Eigenvectors, M);
+
+  std::string filter = "";
+  if (settings.Filter)
+  {
+    const spectral::RowMatrix basis = result.Eigenvectors;
+    const spectral::Vector mass = M.diagonal();
+    const spectral::RowMatrix points = mesh.Vertices;
+    const spectral::RowMatrix coefficients = spectral::ForwardTransform(
+      spectral::BasisView(basis.data(), basis.rows(), basis.cols()), mass,
+      spectral::ConstRowView(points.data(), points.rows(), points.cols()));
+    char buffer[96];
+    std::snprintf(buffer, sizeof(buffer), "  filter %.1f ms (1 thread) %.1f ms (2 threads)",
+      FilterStageMilliseconds(basis, result.Eigenvalues, points, coefficients, 1),
+      FilterStageMilliseconds(basis, result.Eigenvalues, points, coefficients, 2));
+    filter = buffer;
+  }
+
+  std::string scipy = "";
+  if (settings.Scipy && L.rows() <= settings.ScipyMaxN)
+  {
+    std::vector<double> reference;
+    const double seconds = RunScipy(settings, L, M, m, reference);
+    if (seconds > 0.0 && static_cast<int>(reference.size()) == m)
+    {
+      double difference = 0.0;
+      for (int k = 0; k < m; ++k)
+      {
+        difference = std::max(difference,
+          std::abs(reference[k] - result.Eigenvalues[k]) /
+            std::max(std::abs(reference[k]), result.Eigenvalues[m - 1] * 1e-6));
+      }
+      char buffer[160];
+      std::snprintf(buffer, sizeof(buffer), "  scipy %8.1f s  x%5.1f  max|dlambda|/lambda %.1e",
+        seconds, seconds / total, difference);
+      scipy = buffer;
+    }
+    else
+    {
+      scipy = "  scipy failed";
+    }
+  }
+
+  std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e%s\n",
+    static_cast<int>(L.rows()), m, total, assembly, result.Seconds.Factorization,
+    result.Seconds.Solve, result.Seconds.Orthogonalization, result.Seconds.RayleighRitz,
+    result.Seconds.Verification, result.Bands, result.OperatorApplications, result.MaxResidual,
+    orthogonality, (filter + scipy).c_str());
+  std::fflush(stdout);
+  return 0;
+}
+
+Settings Parse(int argc, char* argv[])
+{
+  Settings settings;
+  const std::string self = argv[0];
+  const std::size_t slash = self.rfind('/');
+  settings.ScriptDir = std::getenv("MH_BENCH_SCRIPTS") ? std::getenv("MH_BENCH_SCRIPTS")
+                                                        : (slash == std::string::npos ? "." : self.substr(0, slash));
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--case" && i + 1 < argc)
+    {
+      const std::string value = argv[++i];
+      const std::size_t colon = value.find(':');
+      settings.Cases.emplace_back(std::stoi(value.substr(0, colon)),
+        colon == std::string::npos ? 100 : std::stoi(value.substr(colon + 1)));
+    }
+    else if (arg == "--band" && i + 1 < argc)
+    {
+      settings.BandSize = std::stoi(argv[++i]);
+    }
+    else if (arg == "--scipy")
+    {
+      settings.Scipy = true;
+    }
+    else if (arg == "--filter")
+    {
+      settings.Filter = true;
+    }
+    else if (arg == "--scipy-max-n" && i + 1 < argc)
+    {
+      settings.ScipyMaxN = std::stoi(argv[++i]);
+    }
+    else if (arg == "--workdir" && i + 1 < argc)
+    {
+      settings.WorkDir = argv[++i];
+    }
+    else
+    {
+      std::fprintf(stderr,
+        "usage: %s [--case N:M]... [--band K] [--filter] [--scipy] [--scipy-max-n N] "
+        "[--workdir DIR]\n",
+        argv[0]);
+      std::exit(2);
+    }
+  }
+  if (settings.Cases.empty())
+  {
+    settings.Cases = { { 10000, 100 }, { 100000, 500 } };
+  }
+  return settings;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const Settings settings = Parse(argc, argv);
+  std::printf("%8s %6s %8s %7s %7s %7s %7s %7s %7s %5s %7s %8s %8s\n", "n", "m", "wall[s]",
+    "assem", "factor", "solve", "ortho", "ritz", "verify", "bands", "applies", "residual",
+    "orthog");
+  int failures = 0;
+  for (const auto& c : settings.Cases)
+  {
+    std::fflush(stdout);
+    const pid_t child = fork();
+    if (child == 0)
+    {
+      std::_Exit(RunCase(settings, c.first, c.second));
+    }
+    int status = 0;
+    struct rusage usage;
+    wait4(child, &status, 0, &usage);
+    std::printf("%17s peak RSS %.0f MB\n", "", usage.ru_maxrss / 1024.0);
+    failures += (WIFEXITED(status) && WEXITSTATUS(status) == 0) ? 0 : 1;
+  }
+  return failures == 0 ? 0 : 1;
+}
