@@ -14,6 +14,8 @@ packages=(
   libopenblas-dev
   cmake
   g++
+  clang
+  libclang-rt-14-dev
   xvfb
   xauth
   libgl1-mesa-dri

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Build and test Manifold Harmonics twice:
+# Build and test Manifold Harmonics three times:
 #   1. against ParaView (module, Python wrapping, plugin) in ${BUILD_DIR:-build}, all tests;
-#   2. as a plain VTK module (find_package(VTK), no ParaView) in ${BUILD_DIR}/vtk-only, its tests.
-# Exits non-zero if a dependency, a configure, a build or a test fails.
-# Environment: BUILD_DIR (default build), JOBS (default 2), SKIP_DEPS=1 to skip install-deps.sh.
+#   2. as a plain VTK module (find_package(VTK), no ParaView) in ${BUILD_DIR}/vtk-only, its tests;
+#   3. the spectral core alone (Testing/Core, no VTK) with AddressSanitizer and
+#      UndefinedBehaviorSanitizer in ${BUILD_DIR}/sanitize, its tests, then the libFuzzer target
+#      FuzzCore for FUZZ_SECONDS (default 60) when clang is available.
+# Exits non-zero if a dependency, a configure, a build, a test or the fuzzer fails.
+# Environment: BUILD_DIR (default build), JOBS (default 2), SKIP_DEPS=1 to skip install-deps.sh,
+# FUZZ_SECONDS (0 skips the fuzzer), SKIP_SANITIZE=1 to skip stage 3.
 set -euo pipefail
 
 source_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -48,6 +52,38 @@ cmake -S "${source_dir}" -B "${build_dir}/vtk-only" \
   -DVTK_DIR="${cmake_dir}/vtk"
 cmake --build "${build_dir}/vtk-only" -j "${jobs}"
 (cd "${build_dir}/vtk-only" && run_ctest --output-on-failure) || status=1
+
+if [ "${SKIP_SANITIZE:-0}" != 1 ]; then
+  sanitize_dir="${build_dir}/sanitize"
+  fuzz_seconds="${FUZZ_SECONDS:-60}"
+  # libFuzzer needs clang; without it the sanitized tests still run with the default compiler.
+  if command -v clang++ > /dev/null 2>&1; then
+    sanitize_compiler=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++
+      -DMANIFOLDHARMONICS_FUZZ=ON)
+  else
+    sanitize_compiler=(-DMANIFOLDHARMONICS_FUZZ=OFF)
+    fuzz_seconds=0
+  fi
+  echo "=== Core with sanitizers: ${sanitize_dir}"
+  stage_start=${SECONDS}
+  cmake -S "${source_dir}/Testing/Core" -B "${sanitize_dir}" \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DMANIFOLDHARMONICS_SANITIZE=ON \
+    "${sanitize_compiler[@]}"
+  cmake --build "${sanitize_dir}" -j "${jobs}"
+  # CHOLMOD and OpenBLAS are not instrumented: leaks inside them are not ours to report.
+  export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=0"
+  export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+  (cd "${sanitize_dir}" && ctest --output-on-failure -j "${jobs}") || status=1
+  if [ "${fuzz_seconds}" -gt 0 ]; then
+    echo "=== Fuzzing the core for ${fuzz_seconds} s"
+    mkdir -p "${sanitize_dir}/fuzz-corpus" "${sanitize_dir}/fuzz-findings"
+    (cd "${sanitize_dir}/fuzz-findings" && OPENBLAS_NUM_THREADS=1 \
+      "${sanitize_dir}/FuzzCore" -max_total_time="${fuzz_seconds}" -max_len=512 \
+      -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 "${sanitize_dir}/fuzz-corpus") || status=1
+  fi
+  echo "=== Sanitizer stage took $((SECONDS - stage_start)) s"
+fi
 
 if [ "${status}" -ne 0 ]; then
   echo "=== FAILED: see the CTest output above" >&2

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <string>
 
@@ -38,6 +39,10 @@ bool IsDegenerate(const TriangleMesh& mesh, int f)
   return !(doubleArea > 1e-12 * longest);
 }
 
+/// Largest coordinate magnitude PrepareMesh accepts: squared areas (edge lengths to the fourth
+/// power) stay finite below it.
+constexpr double MaxCoordinate = 1e75;
+
 /// Union-find root with path halving.
 int Root(std::vector<int>& parent, int i)
 {
@@ -69,6 +74,14 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
       {
         throw InvalidInput("point " + std::to_string(id) +
           " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
+      }
+      const double magnitude = input.Vertices.row(id).cwiseAbs().maxCoeff();
+      if (magnitude > MaxCoordinate)
+      {
+        char value[32];
+        std::snprintf(value, sizeof(value), "%g", magnitude);
+        throw InvalidInput("point " + std::to_string(id) + " has a coordinate of magnitude " +
+          value + ", beyond 1e75 where triangle areas overflow; rescale the mesh");
       }
     }
   }

@@ -41,7 +41,8 @@ struct PreparedMesh
  *
  * \param input Points and triangles; indices must lie in [0, #V).
  * \return The compact mesh with the map back to input point ids.
- * \throws InvalidInput for an index out of range or a non-finite coordinate on a used point.
+ * \throws InvalidInput for an index out of range, or a non-finite coordinate or one of magnitude
+ *         above 1e75 (where squared areas overflow) on a used point.
  */
 PreparedMesh PrepareMesh(const TriangleMesh& input);
 

@@ -285,6 +285,10 @@ void PrepareMeshRejectsBadInput()
   TriangleMesh inf = DegenerateMesh();
   inf.Vertices(0, 2) = std::numeric_limits<double>::infinity();
   CheckThrows<InvalidInput>([&inf]() { PrepareMesh(inf); }, "infinite coordinate");
+  // Found by FuzzCore: edges of 1e150 overflow the cross product to an infinite area.
+  TriangleMesh huge = DegenerateMesh();
+  huge.Vertices.row(0) << 1e150, 1e150, 1e150;
+  CheckThrows<InvalidInput>([&huge]() { PrepareMesh(huge); }, "coordinate of magnitude 1e150");
   TriangleMesh unusedNan = DegenerateMesh();
   unusedNan.Vertices(6, 0) = std::numeric_limits<double>::quiet_NaN();
   bool accepted = true;

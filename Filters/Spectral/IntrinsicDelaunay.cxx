@@ -1,0 +1,424 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "IntrinsicDelaunay.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace spectral
+{
+namespace
+{
+/// A side of a triangle: side s of face f runs from corner s to corner s+1.
+struct Side
+{
+  int Face = -1;
+  int Index = 0;
+};
+
+bool operator==(const Side& a, const Side& b)
+{
+  return a.Face == b.Face && a.Index == b.Index;
+}
+
+/// Area of a triangle from its side lengths (Kahan's stable Heron formula); 0 if they violate
+/// the triangle inequality.
+double HeronArea(double a, double b, double c)
+{
+  if (a < b)
+  {
+    std::swap(a, b);
+  }
+  if (a < c)
+  {
+    std::swap(a, c);
+  }
+  if (b < c)
+  {
+    std::swap(b, c);
+  }
+  const double p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return p > 0.0 ? 0.25 * std::sqrt(p) : 0.0;
+}
+
+/// True if the triangle is too thin for its cotangents to mean anything.
+bool IsDegenerate(double a, double b, double c, double area)
+{
+  const double longest = std::max({ a, b, c });
+  return !(2.0 * area > 1e-12 * longest * longest);
+}
+
+/// Cotangent of the angle opposite side a; 0 for a degenerate triangle.
+double Cot(double a, double b, double c)
+{
+  const double area = HeronArea(a, b, c);
+  if (IsDegenerate(a, b, c, area))
+  {
+    return 0.0;
+  }
+  return (b * b + c * c - a * a) / (4.0 * area);
+}
+
+/// The working state of the flip algorithm: triangles, lengths and the gluing of their sides.
+class Flipper
+{
+public:
+  Flipper(IntrinsicTriangulation& T)
+    : T(T)
+    , Glue(static_cast<std::size_t>(T.Faces.rows()) * 3)
+  {
+  }
+
+  /// Orient the faces consistently where possible and glue manifold edges.
+  void Connect();
+  /// Flip until Delaunay or out of budget.
+  void Run(const Monitor& monitor);
+
+private:
+  Side& Neighbor(const Side& s) { return this->Glue[3 * s.Face + s.Index]; }
+  int Vertex(int f, int c) const { return this->T.Faces(f, c % 3); }
+  double Length(int f, int c) const { return this->T.Lengths(f, c % 3); }
+  /// cot a + cot b of the angles opposite the side s and its glued twin.
+  double CotSum(const Side& s);
+  /// Flip the edge of side s (glued); false if the new triangles would be degenerate.
+  bool Flip(const Side& s);
+
+  IntrinsicTriangulation& T;
+  std::vector<Side> Glue;
+};
+
+//------------------------------------------------------------------------------
+void Flipper::Connect()
+{
+  const int numFaces = static_cast<int>(this->T.Faces.rows());
+  // The sides of each undirected edge.
+  std::map<std::pair<int, int>, std::vector<Side>> edges;
+  for (int f = 0; f < numFaces; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int i = this->Vertex(f, c);
+      const int j = this->Vertex(f, c + 1);
+      edges[{ std::min(i, j), std::max(i, j) }].push_back({ f, c });
+    }
+  }
+
+  // Orient faces by breadth-first traversal across manifold edges: a neighbour is reversed when
+  // it runs along the shared edge in the same direction.
+  std::vector<int> state(numFaces, 0); // 0 unvisited, 1 kept, 2 reversed
+  std::vector<int> queue;
+  for (int seed = 0; seed < numFaces; ++seed)
+  {
+    if (state[seed] != 0)
+    {
+      continue;
+    }
+    state[seed] = 1;
+    queue.assign(1, seed);
+    for (std::size_t q = 0; q < queue.size(); ++q)
+    {
+      const int f = queue[q];
+      for (int c = 0; c < 3; ++c)
+      {
+        const int i = this->Vertex(f, c);
+        const int j = this->Vertex(f, c + 1);
+        const auto& sides = edges[{ std::min(i, j), std::max(i, j) }];
+        if (sides.size() != 2)
+        {
+          continue;
+        }
+        const Side other = sides[0].Face == f && sides[0].Index == c ? sides[1] : sides[0];
+        if (state[other.Face] != 0)
+        {
+          continue;
+        }
+        const bool sameDirection = this->Vertex(other.Face, other.Index) == i;
+        state[other.Face] = sameDirection ? 2 : 1;
+        if (sameDirection)
+        {
+          // Reverse in place: (a, b, c) -> (a, c, b); sides (ab, bc, ca) -> (ac, cb, ba).
+          std::swap(this->T.Faces(other.Face, 1), this->T.Faces(other.Face, 2));
+          const double ab = this->T.Lengths(other.Face, 0);
+          const double ca = this->T.Lengths(other.Face, 2);
+          this->T.Lengths(other.Face, 0) = ca;
+          this->T.Lengths(other.Face, 2) = ab;
+          // The side indices recorded in `edges` for this face changed: fix them.
+          for (int d = 0; d < 3; ++d)
+          {
+            const int a = this->Vertex(other.Face, d);
+            const int b = this->Vertex(other.Face, d + 1);
+            for (Side& s : edges[{ std::min(a, b), std::max(a, b) }])
+            {
+              if (s.Face == other.Face)
+              {
+                s.Index = d;
+              }
+            }
+          }
+        }
+        queue.push_back(other.Face);
+      }
+    }
+  }
+
+  // Glue the manifold edges whose two sides now run in opposite directions.
+  for (const auto& edge : edges)
+  {
+    const auto& sides = edge.second;
+    if (sides.size() > 2)
+    {
+      ++this->T.UnflippableEdges;
+      continue;
+    }
+    if (sides.size() != 2 || sides[0].Face == sides[1].Face)
+    {
+      continue;
+    }
+    if (this->Vertex(sides[0].Face, sides[0].Index) == this->Vertex(sides[1].Face, sides[1].Index))
+    {
+      ++this->T.UnflippableEdges; // non-orientable: a Moebius-like seam
+      continue;
+    }
+    this->Neighbor(sides[0]) = sides[1];
+    this->Neighbor(sides[1]) = sides[0];
+  }
+}
+
+//------------------------------------------------------------------------------
+double Flipper::CotSum(const Side& s)
+{
+  const Side t = this->Neighbor(s);
+  const int f = s.Face, c = s.Index, g = t.Face, d = t.Index;
+  return Cot(this->Length(f, c), this->Length(f, c + 1), this->Length(f, c + 2)) +
+    Cot(this->Length(g, d), this->Length(g, d + 1), this->Length(g, d + 2));
+}
+
+//------------------------------------------------------------------------------
+bool Flipper::Flip(const Side& s)
+{
+  // f = (i, j, k) with side c = (i, j); g = (j, i, l) with side d = (j, i).
+  const Side t = this->Neighbor(s);
+  const int f = s.Face, c = s.Index, g = t.Face, d = t.Index;
+  const int i = this->Vertex(f, c), j = this->Vertex(f, c + 1), k = this->Vertex(f, c + 2);
+  const int l = this->Vertex(g, d + 2);
+  const double lij = this->Length(f, c), ljk = this->Length(f, c + 1), lki = this->Length(f, c + 2);
+  const double lil = this->Length(g, d + 1), llj = this->Length(g, d + 2);
+
+  // Lay the quad out in the plane: i at the origin, j on the positive x axis, k above, l below.
+  const double areaF = HeronArea(lij, ljk, lki);
+  const double areaG = HeronArea(lij, lil, llj);
+  if (IsDegenerate(lij, ljk, lki, areaF) || IsDegenerate(lij, lil, llj, areaG))
+  {
+    return false;
+  }
+  const double xk = (lki * lki - ljk * ljk + lij * lij) / (2.0 * lij);
+  const double yk = 2.0 * areaF / lij;
+  const double xl = (lil * lil - llj * llj + lij * lij) / (2.0 * lij);
+  const double yl = -2.0 * areaG / lij;
+  const double lkl = std::hypot(xk - xl, yk - yl);
+  // The new triangles (k, i, l) and (l, j, k) must both be proper: the quad is convex.
+  const double areaKIL = HeronArea(lki, lil, lkl);
+  const double areaLJK = HeronArea(llj, ljk, lkl);
+  if (IsDegenerate(lki, lil, lkl, areaKIL) || IsDegenerate(llj, ljk, lkl, areaLJK))
+  {
+    return false;
+  }
+
+  // The four outer sides, where they go, and what they are glued to.
+  const std::array<Side, 4> oldSides = {
+    Side{ f, (c + 2) % 3 }, Side{ g, (d + 1) % 3 }, Side{ g, (d + 2) % 3 }, Side{ f, (c + 1) % 3 }
+  };
+  const std::array<Side, 4> newSides = { Side{ f, 0 }, Side{ f, 1 }, Side{ g, 0 }, Side{ g, 1 } };
+  std::array<Side, 4> outer;
+  for (int e = 0; e < 4; ++e)
+  {
+    outer[e] = this->Neighbor(oldSides[e]);
+    for (int o = 0; o < 4; ++o)
+    {
+      if (outer[e] == oldSides[o])
+      {
+        outer[e] = newSides[o]; // an outer side glued to another side of the same quad
+      }
+    }
+  }
+
+  // f' = (k, i, l) with sides (ki, il, lk); g' = (l, j, k) with sides (lj, jk, kl).
+  this->T.Faces.row(f) << k, i, l;
+  this->T.Lengths.row(f) << lki, lil, lkl;
+  this->T.Faces.row(g) << l, j, k;
+  this->T.Lengths.row(g) << llj, ljk, lkl;
+  for (int e = 0; e < 4; ++e)
+  {
+    this->Neighbor(newSides[e]) = outer[e];
+    if (outer[e].Face >= 0)
+    {
+      this->Neighbor(outer[e]) = newSides[e];
+    }
+  }
+  this->Neighbor(Side{ f, 2 }) = Side{ g, 2 };
+  this->Neighbor(Side{ g, 2 }) = Side{ f, 2 };
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void Flipper::Run(const Monitor& monitor)
+{
+  constexpr double Tolerance = 1e-10;
+  const int numFaces = static_cast<int>(this->T.Faces.rows());
+  const long long budget = 50LL * numFaces + 1000;
+  std::vector<Side> stack;
+  stack.reserve(static_cast<std::size_t>(numFaces) * 3);
+  for (int f = 0; f < numFaces; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (this->Neighbor(Side{ f, c }).Face > f)
+      {
+        stack.push_back({ f, c });
+      }
+    }
+  }
+  long long flips = 0;
+  while (!stack.empty() && flips < budget)
+  {
+    const Side s = stack.back();
+    stack.pop_back();
+    const Side t = this->Neighbor(s);
+    if (t.Face < 0 || !(this->CotSum(s) < -Tolerance) || !this->Flip(s))
+    {
+      continue;
+    }
+    ++flips;
+    if (flips % 4096 == 0)
+    {
+      monitor.ThrowIfCancelled();
+    }
+    // The four outer sides of the quad may have stopped being Delaunay.
+    stack.push_back({ s.Face, 0 });
+    stack.push_back({ s.Face, 1 });
+    stack.push_back({ t.Face, 0 });
+    stack.push_back({ t.Face, 1 });
+  }
+  this->T.Flips = static_cast<int>(flips);
+  for (int f = 0; f < numFaces; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const Side t = this->Neighbor(Side{ f, c });
+      if (t.Face > f && this->CotSum(Side{ f, c }) < -Tolerance)
+      {
+        ++this->T.NonDelaunayEdges;
+      }
+    }
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+IntrinsicTriangulation IntrinsicTriangulationOf(const TriangleMesh& mesh)
+{
+  IntrinsicTriangulation T;
+  T.NumberOfPoints = static_cast<int>(mesh.Vertices.rows());
+  T.Faces = mesh.Faces;
+  T.Lengths.resize(mesh.Faces.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      T.Lengths(f, c) =
+        (mesh.Vertices.row(mesh.Faces(f, (c + 1) % 3)) - mesh.Vertices.row(mesh.Faces(f, c)))
+          .norm();
+    }
+  }
+  return T;
+}
+
+//------------------------------------------------------------------------------
+IntrinsicTriangulation IntrinsicDelaunay(const TriangleMesh& mesh, const Monitor& monitor)
+{
+  IntrinsicTriangulation T = IntrinsicTriangulationOf(mesh);
+  Flipper flipper(T);
+  flipper.Connect();
+  monitor.ThrowIfCancelled();
+  flipper.Run(monitor);
+  return T;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix IntrinsicCotanStiffness(const IntrinsicTriangulation& T)
+{
+  const int n = T.NumberOfPoints;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(T.Faces.rows()) * 12 + n);
+  for (int i = 0; i < n; ++i)
+  {
+    triplets.emplace_back(i, i, 0.0);
+  }
+  for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      // Side c = (i, j) is opposite corner c+2.
+      const int i = T.Faces(f, c);
+      const int j = T.Faces(f, (c + 1) % 3);
+      const double halfCot =
+        0.5 * Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3));
+      triplets.emplace_back(i, j, -halfCot);
+      triplets.emplace_back(j, i, -halfCot);
+      triplets.emplace_back(i, i, halfCot);
+      triplets.emplace_back(j, j, halfCot);
+    }
+  }
+  SparseMatrix Q(n, n);
+  Q.setFromTriplets(triplets.begin(), triplets.end());
+  Q.makeCompressed();
+  return Q;
+}
+
+//------------------------------------------------------------------------------
+Vector IntrinsicLumpedMass(const IntrinsicTriangulation& T)
+{
+  Vector d = Vector::Zero(T.NumberOfPoints);
+  for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
+  {
+    const double third = HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)) / 3.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      d[T.Faces(f, c)] += third;
+    }
+  }
+  return d;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix IntrinsicConsistentMass(const IntrinsicTriangulation& T)
+{
+  const int n = T.NumberOfPoints;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(T.Faces.rows()) * 9 + n);
+  for (int i = 0; i < n; ++i)
+  {
+    triplets.emplace_back(i, i, 0.0);
+  }
+  for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
+  {
+    const double area = HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2));
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        triplets.emplace_back(
+          T.Faces(f, a), T.Faces(f, b), area * (a == b ? 1.0 / 6.0 : 1.0 / 12.0));
+      }
+    }
+  }
+  SparseMatrix B(n, n);
+  B.setFromTriplets(triplets.begin(), triplets.end());
+  B.makeCompressed();
+  return B;
+}
+} // namespace spectral
