@@ -1,0 +1,186 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Checks of vtkManifoldHarmonicSmoothing: it equals basis + transform + low-pass spectral filter
+// with the cutoff CutoffFraction * omega_max, keeps the input arrays and cells and adds no basis
+// array; and of the Spectrum output of vtkSpectralFilter: its columns and their values.
+
+#include "vtkManifoldHarmonicSmoothing.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicTransform.h"
+#include "vtkMath.h"
+#include "vtkMinimalStandardRandomSequence.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSpectralFilter.h"
+#include "vtkSphereSource.h"
+#include "vtkTable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace
+{
+//------------------------------------------------------------------------------
+bool Check(bool condition, const std::string& what)
+{
+  if (!condition)
+  {
+    std::cerr << "ERROR: " << what << std::endl;
+  }
+  return condition;
+}
+
+//------------------------------------------------------------------------------
+// A sphere with radial noise, so that smoothing has something to remove.
+vtkSmartPointer<vtkPolyData> NoisySphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(18);
+  sphere->Update();
+  auto noisy = vtkSmartPointer<vtkPolyData>::New();
+  noisy->DeepCopy(sphere->GetOutput());
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(7);
+  vtkPoints* points = noisy->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    points->GetPoint(i, x);
+    const double scale = 1.0 + 0.05 * (random->GetValue() - 0.5);
+    random->Next();
+    points->SetPoint(i, x[0] * scale, x[1] * scale, x[2] * scale);
+  }
+  return noisy;
+}
+
+//------------------------------------------------------------------------------
+double MaxDistance(vtkPoints* a, vtkPoints* b)
+{
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
+  }
+  return worst;
+}
+
+//------------------------------------------------------------------------------
+bool TestSameAsThreeStages(vtkPolyData* input)
+{
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(input);
+  smoothing->SetNumberOfHarmonics(30);
+  smoothing->SetCutoffFraction(0.6);
+  smoothing->Update();
+  vtkPolyData* smoothed = smoothing->GetOutput();
+
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputData(input);
+  basis->SetNumberOfHarmonics(30);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputConnection(basis->GetOutputPort());
+  transform->Update();
+  vtkDataArray* lambda = basis->GetOutput()->GetFieldData()->GetArray(
+    vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  vtkNew<vtkSpectralFilter> filter;
+  filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetCutoff(0.6 * std::sqrt(lambda->GetTuple1(29)));
+  filter->Update();
+
+  bool ok = Check(smoothed->GetNumberOfPoints() == input->GetNumberOfPoints(), "point count");
+  ok &= Check(smoothed->GetNumberOfPolys() == input->GetNumberOfPolys(), "cells are kept");
+  ok &= Check(!smoothed->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()),
+    "no harmonics array on the smoothed output");
+  ok &= Check(smoothed->GetPointData()->GetArray("Normals") != nullptr, "input arrays are kept");
+  const double difference = MaxDistance(smoothed->GetPoints(), filter->GetOutput()->GetPoints());
+  ok &= Check(difference < 1e-12, "smoothing equals the three stages (" +
+      std::to_string(difference) + ")");
+  const double moved = MaxDistance(smoothed->GetPoints(), input->GetPoints());
+  ok &= Check(moved > 1e-3, "smoothing moves the noisy points");
+
+  // Smaller fractions smooth more: the radius varies less.
+  smoothing->SetCutoffFraction(0.2);
+  smoothing->Update();
+  double low = 1e300, high = 0.0;
+  for (vtkIdType i = 0; i < smoothing->GetOutput()->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    smoothing->GetOutput()->GetPoint(i, x);
+    low = std::min(low, vtkMath::Norm(x));
+    high = std::max(high, vtkMath::Norm(x));
+  }
+  ok &= Check(high - low < 0.02, "cutoff 0.2 leaves a nearly round sphere");
+
+  std::ostringstream text;
+  smoothing->Print(text);
+  ok &= Check(text.str().find("CutoffFraction: 0.2") != std::string::npos, "PrintSelf");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool TestSpectrumTable(vtkPolyData* input)
+{
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputData(input);
+  basis->SetNumberOfHarmonics(20);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputConnection(basis->GetOutputPort());
+  vtkNew<vtkSpectralFilter> filter;
+  filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetCutoff(3.0);
+  filter->Update();
+  vtkTable* spectrum = filter->GetSpectrumOutput();
+  bool ok = Check(spectrum->GetNumberOfRows() == 20, "spectrum has one row per harmonic");
+  const char* names[] = { "Index", "Frequency", "Gain", "Points_Magnitude",
+    "Points_Filtered_Magnitude" };
+  for (const char* name : names)
+  {
+    ok &= Check(spectrum->GetColumnByName(name) != nullptr, std::string("column ") + name);
+  }
+  if (!ok)
+  {
+    return false;
+  }
+  vtkTable* before = transform->GetSpectrumOutput();
+  for (vtkIdType k = 0; k < 20; ++k)
+  {
+    const double omega = spectrum->GetValueByName(k, "Frequency").ToDouble();
+    const double gain = spectrum->GetValueByName(k, "Gain").ToDouble();
+    const double magnitude = spectrum->GetValueByName(k, "Points_Magnitude").ToDouble();
+    const double filtered = spectrum->GetValueByName(k, "Points_Filtered_Magnitude").ToDouble();
+    ok &= Check(std::abs(magnitude - before->GetValueByName(k, "Points_Magnitude").ToDouble()) <
+        1e-12, "magnitude before filtering equals the transform's");
+    ok &= Check(std::abs(filtered - gain * magnitude) < 1e-12, "filtered magnitude = gain x");
+    ok &= Check(omega < 2.85 ? gain == 1.0 : (omega > 3.15 ? gain == 0.0 : true),
+      "low-pass gain at omega " + std::to_string(omega));
+  }
+  // The table follows the parameters.
+  filter->SetFilterKindToHighPass();
+  filter->Update();
+  ok &= Check(filter->GetSpectrumOutput()->GetValueByName(0, "Gain").ToDouble() == 0.0,
+    "high-pass gain 0 at omega 0 after a parameter change");
+  return ok;
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+int TestManifoldHarmonicSmoothing(int, char*[])
+{
+  vtkSmartPointer<vtkPolyData> input = NoisySphere();
+  bool ok = TestSameAsThreeStages(input);
+  ok &= TestSpectrumTable(input);
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}

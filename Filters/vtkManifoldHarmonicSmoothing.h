@@ -1,0 +1,89 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkManifoldHarmonicSmoothing
+ * @brief One-step low-pass smoothing of a surface in its manifold harmonic basis.
+ *
+ * vtkManifoldHarmonicSmoothing runs vtkManifoldHarmonicBasis, vtkManifoldHarmonicTransform and a
+ * LOW_PASS vtkSpectralFilter on its input and returns the input with the smoothed point
+ * coordinates: the coordinates keep their harmonics below the cutoff frequency and lose those
+ * above (B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics", Computer
+ * Graphics Forum 27(2), 2008, section 5).
+ *
+ * The cutoff is given relative to the spectrum that is computed: the cutoff frequency is
+ * CutoffFraction * omega_max, where omega_max = sqrt(lambda_{m-1}) is the frequency of the
+ * highest of the m = NumberOfHarmonics harmonics. So CutoffFraction 0.5 keeps about the lowest
+ * quarter of the harmonics (on a surface the number of harmonics below omega grows like
+ * omega^2), and 1 keeps (nearly) all of them. The step from gain 1 to gain 0 is a raised cosine
+ * of relative width 0.1 around the cutoff (vtkSpectralFilter::Transition).
+ *
+ * Input: a vtkPolyData with polygons (triangulated internally). Output: the input (cells, point
+ * and cell data) with smoothed points of the same precision; no basis array is added. For the
+ * harmonics, the spectrum or other transfer functions, use the three filters themselves.
+ *
+ * Parameters:
+ * - NumberOfHarmonics (default 100): the m harmonics computed; more harmonics keep finer details
+ *   below the cutoff and cost more time (see vtkManifoldHarmonicBasis).
+ * - CutoffFraction (default 0.5, range [0.001, 1]): the cutoff as a fraction of omega_max.
+ *
+ * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles and an eigensolve.
+ *
+ * Test: Filters/Testing/Cxx/TestManifoldHarmonicSmoothing.cxx.
+ *
+ * @sa vtkManifoldHarmonicBasis vtkManifoldHarmonicTransform vtkSpectralFilter
+ * vtkWindowedSincPolyDataFilter
+ */
+#ifndef vtkManifoldHarmonicSmoothing_h
+#define vtkManifoldHarmonicSmoothing_h
+
+#include "vtkManifoldHarmonicsModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing : public vtkPolyDataAlgorithm
+{
+public:
+  ///@{
+  /**
+   * Standard methods for instantiation, type information, and printing.
+   */
+  static vtkManifoldHarmonicSmoothing* New();
+  vtkTypeMacro(vtkManifoldHarmonicSmoothing, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+  ///@}
+
+  ///@{
+  /**
+   * Number m of harmonics to compute (lowest frequencies first); clamped to the number of
+   * points triangles use. Range [1, VTK_INT_MAX]. Default is 100.
+   */
+  vtkSetClampMacro(NumberOfHarmonics, int, 1, VTK_INT_MAX);
+  vtkGetMacro(NumberOfHarmonics, int);
+  ///@}
+
+  ///@{
+  /**
+   * Cutoff frequency as a fraction of the highest computed frequency omega_max =
+   * sqrt(lambda_{m-1}): harmonics below CutoffFraction * omega_max are kept, those above are
+   * removed. Smaller is smoother. Range [0.001, 1]. Default is 0.5.
+   */
+  vtkSetClampMacro(CutoffFraction, double, 0.001, 1.0);
+  vtkGetMacro(CutoffFraction, double);
+  ///@}
+
+protected:
+  vtkManifoldHarmonicSmoothing();
+  ~vtkManifoldHarmonicSmoothing() override = default;
+
+  int RequestData(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int NumberOfHarmonics;
+  double CutoffFraction;
+
+private:
+  vtkManifoldHarmonicSmoothing(const vtkManifoldHarmonicSmoothing&) = delete;
+  void operator=(const vtkManifoldHarmonicSmoothing&) = delete;
+};
+
+#endif

@@ -1,0 +1,107 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkManifoldHarmonicsParallel.h
+ * @brief Private helpers that make the manifold harmonic filters give the serial result when the
+ *        mesh is distributed over several processes (pvbatch or pvserver under MPI).
+ *
+ * The basis is global: vtkManifoldHarmonicBasis gathers the pieces on process 0, merges the
+ * points that pieces duplicate along their seams, solves there and sends every process the rows
+ * of its own points. A point held by several processes is owned by the lowest rank; on the
+ * others it is flagged vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array, so that the
+ * sums over points of vtkManifoldHarmonicTransform (then added over processes) count it once.
+ *
+ * Every function here is collective: all processes of the controller must call it, including
+ * those without data. Not installed and not wrapped.
+ */
+#ifndef vtkManifoldHarmonicsParallel_h
+#define vtkManifoldHarmonicsParallel_h
+
+#include "Spectral/Transfer.h"
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkDoubleArray;
+class vtkMultiProcessController;
+class vtkPolyData;
+class vtkUnsignedCharArray;
+
+namespace vtkManifoldHarmonicsParallel
+{
+/// The global controller when it has more than one process, otherwise nullptr (serial run).
+vtkMultiProcessController* DistributedController();
+
+/// Number of processes whose `hasData` is true (collective).
+int CountRanks(vtkMultiProcessController* controller, bool hasData);
+
+/// The piece of one process after the gather and merge: its points as rows of the merged mesh.
+struct MergedMesh
+{
+  /// The merged triangle mesh (points and triangles only), valid on process 0.
+  vtkSmartPointer<vtkPolyData> Surface;
+  /// PointMaps[r][i]: merged id of point i of the piece of process r.
+  std::vector<std::vector<vtkIdType>> PointMaps;
+  /// Owner[j]: the lowest rank whose piece holds merged point j.
+  std::vector<int> Owner;
+};
+
+/**
+ * Gather the triangle pieces (points and triangles; `piece` may be empty) on process 0 and merge
+ * coincident points exactly. \return the merged mesh on process 0, an empty MergedMesh elsewhere.
+ */
+MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* piece);
+
+/// The rows of one process: harmonics (n_r by m), mass (n_r) and DUPLICATEPOINT flags (n_r).
+struct PieceBasis
+{
+  vtkSmartPointer<vtkDoubleArray> Harmonics;
+  vtkSmartPointer<vtkDoubleArray> Mass;
+  vtkSmartPointer<vtkUnsignedCharArray> Duplicates;
+  spectral::Vector Eigenvalues;
+};
+
+/**
+ * Send every process the rows of its points. On process 0 `ok` says whether the solve
+ * succeeded and `harmonics` (merged n by m), `mass` (merged n) and `eigenvalues` (m) hold its
+ * result; other processes pass empty values. \return false on every process if process 0 failed.
+ */
+bool ScatterBasis(vtkMultiProcessController* controller,
+  bool ok,
+  const MergedMesh& merged,
+  const spectral::RowMatrix& harmonics,
+  const spectral::Vector& mass,
+  const spectral::Vector& eigenvalues,
+  PieceBasis& piece);
+
+/// A named m by c matrix of coefficients (or any values to add over processes).
+struct NamedMatrix
+{
+  std::string Name;
+  spectral::RowMatrix Values;
+};
+
+/**
+ * Sum the matrices of equal name over all processes; every process gets the union of the names
+ * (in the order of first appearance by rank) with the sums. `eigenvalues` is not summed: the
+ * first process that has some gives them to all. \return false (on every process) if two
+ * processes disagree on the shape of a matrix of the same name.
+ */
+bool SumOverRanks(vtkMultiProcessController* controller,
+  std::vector<NamedMatrix>& matrices,
+  spectral::Vector& eigenvalues);
+
+/// The sum of `values` over all processes, in place (collective).
+void SumOverRanks(vtkMultiProcessController* controller, std::vector<double>& values);
+
+/**
+ * 1 for the points to count in sums over points, 0 for those a ghost array marks as duplicates
+ * or ghosts of another process. Length n; all ones without a point ghost array.
+ */
+spectral::Vector OwnedPoints(vtkPolyData* input);
+} // namespace vtkManifoldHarmonicsParallel
+
+#endif
