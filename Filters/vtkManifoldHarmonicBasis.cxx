@@ -5,11 +5,15 @@
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsParallel.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -17,12 +21,16 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVersionMacros.h"
 
 #include "Spectral/EigenSolver.h"
+#include "Spectral/IntrinsicDelaunay.h"
 #include "Spectral/Operators.h"
 
 #include <algorithm>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -201,12 +209,167 @@ int CheckPreparedMesh(vtkManifoldHarmonicBasis* self,
   }
   return requested;
 }
+
+//------------------------------------------------------------------------------
+// The arrays of a distributed run on the output of one process: its rows of the harmonics and
+// mass, the eigenvalues, and DUPLICATEPOINT flags (added to any ghost array of the input) on
+// the points that a lower process also holds.
+void AddPieceArrays(vtkPolyData* output,
+  vtkPolyData* input,
+  const vtkManifoldHarmonicsParallel::PieceBasis& rows)
+{
+  output->ShallowCopy(input);
+  const int m = static_cast<int>(rows.Eigenvalues.size());
+  rows.Harmonics->SetName(vtkManifoldHarmonicBasis::HarmonicsArrayName());
+  for (int k = 0; k < m; ++k)
+  {
+    rows.Harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
+  }
+  rows.Mass->SetName(vtkManifoldHarmonicBasis::MassArrayName());
+  output->GetPointData()->AddArray(rows.Harmonics);
+  output->GetPointData()->AddArray(rows.Mass);
+
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  ghosts->DeepCopy(rows.Duplicates);
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  vtkDataArray* existing = input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  for (vtkIdType i = 0; existing && i < ghosts->GetNumberOfTuples(); ++i)
+  {
+    ghosts->SetValue(
+      i, ghosts->GetValue(i) | static_cast<unsigned char>(existing->GetComponent(i, 0)));
+  }
+  output->GetPointData()->AddArray(ghosts);
+
+  vtkNew<vtkDoubleArray> eigenvalues;
+  eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  eigenvalues->SetNumberOfTuples(m);
+  std::copy(rows.Eigenvalues.data(), rows.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
+  output->GetFieldData()->AddArray(eigenvalues);
+}
+
+//------------------------------------------------------------------------------
+// The stiffness L, the mass M of the eigenproblem and the lumped mass written to the output.
+struct Operators
+{
+  spectral::SparseMatrix L;
+  spectral::SparseMatrix M;
+  spectral::Vector Lumped;
+};
+
+//------------------------------------------------------------------------------
+// Assembles the chosen Laplacian. The intrinsic Delaunay one warns about edges it could not
+// make Delaunay (non-manifold edges are never flipped).
+Operators AssembleOperators(vtkManifoldHarmonicBasis* self,
+  const spectral::TriangleMesh& mesh,
+  const spectral::Monitor& monitor)
+{
+  Operators ops;
+  const bool consistent = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT;
+  if (self->GetLaplacian() == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY)
+  {
+    const spectral::IntrinsicTriangulation T = spectral::IntrinsicDelaunay(mesh, monitor);
+    if (T.UnflippableEdges > 0 || T.NonDelaunayEdges > 0)
+    {
+      vtkWarningWithObjectMacro(self,
+        << "Intrinsic Delaunay: " << T.UnflippableEdges
+        << " non-manifold or non-orientable edges were not flipped and " << T.NonDelaunayEdges
+        << " edges are still not Delaunay; their cotangent weights may be negative.");
+    }
+    ops.L = spectral::IntrinsicCotanStiffness(T);
+    ops.Lumped = spectral::IntrinsicLumpedMass(T);
+    ops.M = consistent ? spectral::IntrinsicConsistentMass(T) : spectral::Diagonal(ops.Lumped);
+    return ops;
+  }
+  ops.L = spectral::CotanStiffness(mesh);
+  ops.Lumped = spectral::LumpedMass(mesh);
+  ops.M = consistent ? spectral::ConsistentMass(mesh) : spectral::Diagonal(ops.Lumped);
+  return ops;
+}
+
+//------------------------------------------------------------------------------
+// The relative residual eigenpairs can meet in double precision. Round-off in L h is about
+// eps lambda_max, measured against the lowest frequencies; lambda_max comes from Gershgorin's
+// bound on M^-1 L (lumped mass), the lowest frequency from the size of the surface, (pi / d)^2
+// with d the bounding-box diagonal. Sets `ratio` to lambda_max / lambda_low.
+double AchievableResidual(const spectral::SparseMatrix& L,
+  const spectral::Vector& lumped,
+  const spectral::TriangleMesh& mesh,
+  double& ratio)
+{
+  double top = 0.0;
+  for (int j = 0; j < L.outerSize(); ++j)
+  {
+    const double sum = L.col(j).cwiseAbs().sum();
+    top = std::max(top, lumped[j] > 0.0 ? sum / lumped[j] : 0.0);
+  }
+  const double pi = 3.14159265358979323846;
+  const double d =
+    (mesh.Vertices.colwise().maxCoeff() - mesh.Vertices.colwise().minCoeff()).norm();
+  ratio = top * d * d / (pi * pi);
+  return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
+}
+
+//------------------------------------------------------------------------------
+// SmallestEigenpairs with two fallbacks. A single pair is computed as the first of two: alone,
+// the zero eigenvalue gives the residual test no frequency scale. When the solver fails on
+// operators too badly conditioned for its residual tolerance (needle or tiny triangles give
+// lambda_max / lambda_1 above 10^8), it is run again with the tolerance that double precision
+// allows, with a warning; beyond 1e-4 the eigenpairs would be meaningless: error.
+spectral::EigenResult SolveSmallest(vtkManifoldHarmonicBasis* self,
+  const spectral::SparseMatrix& L,
+  const spectral::SparseMatrix& M,
+  const spectral::Vector& lumped,
+  const spectral::TriangleMesh& mesh,
+  spectral::EigenOptions options,
+  const spectral::Monitor& monitor)
+{
+  const int wanted = options.NumberOfEigenpairs;
+  options.NumberOfEigenpairs = (wanted == 1 && L.rows() > 1) ? 2 : wanted;
+  spectral::EigenResult result;
+  try
+  {
+    result = spectral::SmallestEigenpairs(L, M, options, monitor);
+  }
+  catch (const spectral::SolverFailure& e)
+  {
+    double ratio = 0.0;
+    const double achievable = AchievableResidual(L, lumped, mesh, ratio);
+    if (!(achievable > options.ResidualTolerance))
+    {
+      throw;
+    }
+    std::ostringstream why;
+    why << "the operators are badly conditioned (largest / lowest eigenvalue about " << ratio
+        << ", from needle, sliver or tiny triangles)";
+    if (achievable > 1e-4)
+    {
+      throw spectral::SolverFailure(std::string(e.what()) + "; " + why.str() +
+          " beyond what double precision resolves: remove them (merge close points, e.g. with "
+          "vtkCleanPolyData and a tolerance) or remesh",
+        e.Converged);
+    }
+    vtkWarningWithObjectMacro(self,
+      << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
+      << options.ResidualTolerance << ": " << why.str()
+      << ". Laplacian = Intrinsic Delaunay or remeshing improves this.");
+    options.ResidualTolerance = achievable;
+    result = spectral::SmallestEigenpairs(L, M, options, monitor);
+  }
+  if (result.Eigenvalues.size() > wanted)
+  {
+    result.Eigenvalues.conservativeResize(wanted);
+    result.Eigenvectors.conservativeResize(Eigen::NoChange, wanted);
+  }
+  return result;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   : NumberOfHarmonics(100)
   , MassMatrix(LUMPED)
+  , Laplacian(COTANGENT)
   , BandSize(0)
   , Tolerance(1e-11)
   , MaxIterations(1000)
@@ -220,8 +383,81 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  if (vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController())
+  {
+    // The basis is global: never a per-piece basis when several processes hold the surface.
+    if (vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface) > 1)
+    {
+      return this->ComputeDistributedBasis(controller, input, output);
+    }
+    if (!hasSurface)
+    {
+      // Another process (or none) holds the whole surface.
+      output->ShallowCopy(input);
+      return 1;
+    }
+  }
+  return this->ComputeBasis(input, output);
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController* controller,
+  vtkPolyData* input,
+  vtkPolyData* output)
+{
+  const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  vtkSmartPointer<vtkPolyData> piece = input;
+  if (hasSurface)
+  {
+    piece = ::Triangulate(this, input);
+  }
+  const vtkManifoldHarmonicsParallel::MergedMesh merged =
+    vtkManifoldHarmonicsParallel::GatherAndMerge(controller, piece);
+
+  // Process 0 solves on the merged surface.
+  int status = 1;
+  spectral::RowMatrix harmonics;
+  spectral::Vector mass;
+  spectral::Vector eigenvalues;
+  if (controller->GetLocalProcessId() == 0)
+  {
+    vtkNew<vtkPolyData> whole;
+    status = this->ComputeBasis(merged.Surface, whole);
+    vtkDataArray* h = whole->GetPointData()->GetArray(HarmonicsArrayName());
+    vtkDataArray* d = whole->GetPointData()->GetArray(MassArrayName());
+    vtkDataArray* lambda = whole->GetFieldData()->GetArray(EigenvaluesArrayName());
+    if (status && h && d && lambda)
+    {
+      harmonics = vtkManifoldHarmonicsArrays::Signal(h).View();
+      mass = vtkManifoldHarmonicsArrays::Signal(d).View().col(0);
+      eigenvalues = vtkManifoldHarmonicsArrays::Signal(lambda).View().col(0);
+    }
+  }
+  vtkManifoldHarmonicsParallel::PieceBasis rows;
+  if (!vtkManifoldHarmonicsParallel::ScatterBasis(
+        controller, harmonics.size() > 0, merged, harmonics, mass, eigenvalues, rows))
+  {
+    // Fail on every process (also after a cancel), so that no downstream stage runs on some
+    // processes only and waits for the others.
+    output->Initialize();
+    if (controller->GetLocalProcessId() == 0 && status == 0)
+    {
+      return 0;
+    }
+    vtkErrorMacro(<< "The manifold harmonics of the distributed surface failed on process 0.");
+    return 0;
+  }
+  ::AddPieceArrays(output, input, rows);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* output)
+{
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
-                << this->MassMatrix << ", band size " << this->BandSize << ", tolerance "
+                << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
+                << this->BandSize << ", tolerance "
                 << this->Tolerance << ", max iterations " << this->MaxIterations);
 
   const vtkIdType numPts = input->GetNumberOfPoints();
@@ -251,11 +487,12 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
     const int m = ::CheckPreparedMesh(this, prepared, this->NumberOfHarmonics);
 
     // Assemble the operators.
-    const spectral::SparseMatrix L = spectral::CotanStiffness(prepared.Mesh);
-    const spectral::Vector lumped = spectral::LumpedMass(prepared.Mesh);
-    const spectral::SparseMatrix M = this->MassMatrix == CONSISTENT
-      ? spectral::ConsistentMass(prepared.Mesh)
-      : spectral::Diagonal(lumped);
+    spectral::Monitor cancel;
+    cancel.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
+    const ::Operators ops = ::AssembleOperators(this, prepared.Mesh, cancel);
+    const spectral::SparseMatrix& L = ops.L;
+    const spectral::Vector& lumped = ops.Lumped;
+    const spectral::SparseMatrix& M = ops.M;
     this->UpdateProgress(0.1);
     if (this->GetAbortExecute())
     {
@@ -272,7 +509,8 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
     spectral::Monitor monitor;
     monitor.Progress = [this](double fraction) { this->UpdateProgress(0.1 + 0.85 * fraction); };
     monitor.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
-    const spectral::EigenResult result = spectral::SmallestEigenpairs(L, M, options, monitor);
+    const spectral::EigenResult result =
+      ::SolveSmallest(this, L, M, lumped, prepared.Mesh, options, monitor);
     if (this->GetAbortExecute())
     {
       return 1;
@@ -313,6 +551,9 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << " (default 100)\n";
   os << indent << "Mass Matrix: " << (this->MassMatrix == CONSISTENT ? "Consistent" : "Lumped")
      << " (default Lumped)\n";
+  os << indent << "Laplacian: "
+     << (this->Laplacian == INTRINSIC_DELAUNAY ? "Intrinsic Delaunay" : "Cotangent")
+     << " (default Cotangent)\n";
   os << indent << "Band Size: " << this->BandSize << " (default 0, automatic)\n";
   os << indent << "Tolerance: " << this->Tolerance << " (default 1e-11)\n";
   os << indent << "Max Iterations: " << this->MaxIterations << " (default 1000)\n";

@@ -26,24 +26,38 @@
  * - field data EigenvaluesArrayName() ("ManifoldHarmonicsEigenvalues"): vtkDoubleArray with m
  *   tuples, the eigenvalues in ascending order.
  *
- * Parameters: NumberOfHarmonics (default 100), MassMatrix (default LUMPED), and the solver
+ * Parameters: NumberOfHarmonics (default 100), MassMatrix (default LUMPED), Laplacian (default
+ * COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles), and the solver
  * settings BandSize (default 0, automatic), Tolerance (default 1e-11) and MaxIterations
  * (default 1000).
  *
- * The eigenproblem is solved band by band with shift-invert Lanczos iterations on a sparse
- * LDL^T factorization (Spectra and CHOLMOD). The filter reports progress during the solve and
+ * The eigenproblem is solved band by band with shift-invert block Lanczos iterations on sparse
+ * LDL^T factorizations of L - sigma M (CHOLMOD); the inertia of each factorization proves that
+ * no eigenpair was missed (see Filters/Spectral/EigenSolver.h). The filter reports progress during the solve and
  * honours AbortExecute: an aborted execution leaves the output empty.
+ *
+ * Distributed runs (MPI: pvbatch, pvserver): when the global controller has several processes
+ * and more than one holds triangles, the pieces are gathered on process 0, the points they share
+ * along their seams are merged (within 1e-12 of the bounding box diagonal), the basis of the
+ * whole surface is computed there and every process receives the rows of its own points and
+ * all eigenvalues. A shared point is owned by the lowest rank holding it; on the other
+ * processes it is flagged vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array
+ * (vtkGhostType), which vtkManifoldHarmonicTransform uses to count it once. Never a per-piece
+ * basis. Test: Testing/ParaView/TestParallelManifoldHarmonics.py.in.
  *
  * @warning The harmonics array holds n x m doubles (100 harmonics on a million points take
  * 800 MB). Several connected components give several zero eigenvalues (one constant per
  * component) and are reported with a warning. NumberOfHarmonics is clamped to the number of
- * points that triangles use.
+ * points that triangles use. NaN or infinite coordinates on used points are an error. Needle
+ * triangles so thin that the eigenvalues span more than about 10^8 get eigenpairs verified to
+ * the accuracy double precision allows (with a warning), or an error beyond 1e-4;
+ * INTRINSIC_DELAUNAY removes the needles that lie inside a manifold part of the surface.
  *
  * Reference: B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics",
  * Computer Graphics Forum 27(2), 2008.
  *
- * Tested by Filters/Testing/Cxx/TestManifoldHarmonicBasis.cxx and
- * Filters/Testing/Python/TestManifoldHarmonicBasis.py.
+ * Tested by Filters/Testing/Cxx/TestManifoldHarmonicBasis.cxx,
+ * Filters/Testing/Cxx/TestRobustness.cxx and Filters/Testing/Python/TestManifoldHarmonicBasis.py.
  *
  * @sa
  * vtkManifoldHarmonicTransform vtkSpectralFilter vtkWindowedSincPolyDataFilter
@@ -55,12 +69,14 @@
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
+class vtkMultiProcessController;
+
 class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPolyDataAlgorithm
 {
 public:
   /**
-   * Construct with 100 harmonics, the lumped mass matrix, automatic band size, tolerance 1e-11
-   * and 1000 iterations at most.
+   * Construct with 100 harmonics, the lumped mass matrix, the cotangent Laplacian, automatic
+   * band size, tolerance 1e-11 and 1000 iterations at most.
    */
   static vtkManifoldHarmonicBasis* New();
 
@@ -105,6 +121,35 @@ public:
   vtkGetMacro(MassMatrix, int);
   void SetMassMatrixToLumped() { this->SetMassMatrix(LUMPED); }
   void SetMassMatrixToConsistent() { this->SetMassMatrix(CONSISTENT); }
+  ///@}
+
+  /**
+   * The discrete Laplace-Beltrami operator (stiffness and mass) of the eigenproblem.
+   * COTANGENT: the cotan Laplacian of the input triangles (Vallet & Levy; Pinkall & Polthier).
+   * INTRINSIC_DELAUNAY: the cotan Laplacian of the intrinsic Delaunay triangulation of the same
+   * surface (Bobenko & Springborn 2007; Sharp & Crane 2020), robust to obtuse and needle
+   * triangles.
+   */
+  enum LaplacianType
+  {
+    COTANGENT = 0,
+    INTRINSIC_DELAUNAY = 1
+  };
+
+  ///@{
+  /**
+   * Choose the Laplacian: COTANGENT (0) or INTRINSIC_DELAUNAY (1). INTRINSIC_DELAUNAY flips
+   * edges, on edge lengths alone, until every interior edge is locally Delaunay (its opposite
+   * angles sum to at most pi); the surface and its points stay the same, but the cotan weights
+   * become non-negative and the eigenpairs stop degrading on badly shaped triangles. Its mass
+   * (the output mass array, and the consistent mass if chosen) comes from the intrinsic
+   * triangles: the total area is the same, its distribution over the points differs slightly
+   * from the cotangent option's. Non-manifold edges are never flipped. Default is COTANGENT.
+   */
+  vtkSetClampMacro(Laplacian, int, COTANGENT, INTRINSIC_DELAUNAY);
+  vtkGetMacro(Laplacian, int);
+  void SetLaplacianToCotangent() { this->SetLaplacian(COTANGENT); }
+  void SetLaplacianToIntrinsicDelaunay() { this->SetLaplacian(INTRINSIC_DELAUNAY); }
   ///@}
 
   ///@{
@@ -153,8 +198,23 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /**
+   * The basis of the whole `input` into `output` (a serial run, or process 0 of a distributed
+   * one, on the merged pieces).
+   */
+  int ComputeBasis(vtkPolyData* input, vtkPolyData* output);
+
+  /**
+   * Distributed run (MPI, several processes hold triangles): gather and merge the pieces on
+   * process 0, solve there, give every process the rows of its points. Collective.
+   */
+  int ComputeDistributedBasis(vtkMultiProcessController* controller,
+    vtkPolyData* input,
+    vtkPolyData* output);
+
   int NumberOfHarmonics;
   int MassMatrix;
+  int Laplacian;
   int BandSize;
   double Tolerance;
   int MaxIterations;

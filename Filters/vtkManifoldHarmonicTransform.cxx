@@ -10,6 +10,8 @@
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsParallel.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -105,6 +107,43 @@ vtkSmartPointer<vtkDoubleArray> Magnitudes(const spectral::RowMatrix& coefficien
   const spectral::RowMatrix norms = coefficients.rowwise().norm();
   return vtkManifoldHarmonicsArrays::NewDoubleArray(norms, name.c_str());
 }
+/// The coefficients of the selected signals summed over the points of this process, which a
+/// ghost array may mark as duplicates of another process's points (those count 0).
+/// \return An error message, empty on success.
+std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
+  vtkPolyData* input,
+  std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>& coefficients,
+  spectral::Vector& lambda)
+{
+  vtkManifoldHarmonicsArrays::Basis basis;
+  const std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  const std::vector<NamedSignal> signals = SelectSignals(self, input);
+  self->SetProgressText("Transform");
+  try
+  {
+    const spectral::BasisView H = basis.HarmonicsView();
+    const spectral::Vector mass =
+      basis.MassVector().cwiseProduct(vtkManifoldHarmonicsParallel::OwnedPoints(input));
+    lambda = basis.EigenvalueVector();
+    for (std::size_t s = 0; s < signals.size(); ++s)
+    {
+      const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
+      coefficients.push_back({ Concatenate(signals[s].first.c_str(),
+                                 vtkManifoldHarmonicTransform::CoefficientsSuffix()),
+        spectral::ForwardTransform(H, mass, signal.View()) });
+      self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
+    }
+  }
+  catch (const std::exception& e)
+  {
+    return std::string("Manifold harmonic transform failed: ") + e.what();
+  }
+  return std::string();
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -195,51 +234,51 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
-  if (input->GetNumberOfPoints() == 0)
+  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
+  const bool empty = input->GetNumberOfPoints() == 0;
+  if (empty && !controller)
   {
     vtkWarningMacro(<< "No data to transform!");
     return 1;
   }
 
-  vtkManifoldHarmonicsArrays::Basis basis;
-  const std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  // Local sums over the points of this process (all of them in a serial run).
+  std::vector<vtkManifoldHarmonicsParallel::NamedMatrix> coefficients;
+  spectral::Vector lambda;
+  std::string problem = empty ? std::string() : LocalCoefficients(this, input, coefficients, lambda);
+
+  // Distributed run: every process holds a partial sum; add them up (collective, even on
+  // processes without data or with an error, so that no process waits forever).
+  if (controller && !vtkManifoldHarmonicsParallel::SumOverRanks(controller, coefficients, lambda))
+  {
+    problem = "Processes disagree on the number of harmonics or components of the coefficients.";
+  }
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
     return 0;
   }
-
-  const std::vector<NamedSignal> signals = SelectSignals(this, input);
-  vtkDebugMacro(<< "Transforming " << signals.size() << " signals on " << basis.NumberOfPoints
-                << " points with " << basis.NumberOfHarmonics << " harmonics.");
-
-  this->SetProgressText("Transform");
-  try
+  if (!controller && this->GetAbortExecute())
   {
-    const spectral::BasisView H = basis.HarmonicsView();
-    const spectral::Vector mass = basis.MassVector();
-    AddFrequencyColumns(basis.EigenvalueVector(), spectrum);
-    for (std::size_t s = 0; s < signals.size(); ++s)
+    return 1;
+  }
+
+  // The spectrum table once: on process 0 of a distributed run, whose table ParaView shows.
+  if (lambda.size() > 0 && (!controller || controller->GetLocalProcessId() == 0))
+  {
+    AddFrequencyColumns(lambda, spectrum);
+    for (const auto& signal : coefficients)
     {
-      const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
-      const spectral::RowMatrix coefficients = spectral::ForwardTransform(H, mass, signal.View());
-      const std::string coefficientsName =
-        Concatenate(signals[s].first.c_str(), CoefficientsSuffix());
-      output->GetFieldData()->AddArray(
-        vtkManifoldHarmonicsArrays::NewDoubleArray(coefficients, coefficientsName.c_str()));
-      spectrum->AddColumn(
-        Magnitudes(coefficients, Concatenate(signals[s].first.c_str(), MagnitudeSuffix())));
-      this->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
-      if (this->GetAbortExecute())
-      {
-        return 1;
-      }
+      const std::string name =
+        signal.Name.substr(0, signal.Name.size() - std::string(CoefficientsSuffix()).size());
+      spectrum->AddColumn(Magnitudes(signal.Values, Concatenate(name.c_str(), MagnitudeSuffix())));
     }
   }
-  catch (const std::exception& e)
+  for (const auto& signal : empty ? std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>()
+                                  : coefficients)
   {
-    vtkErrorMacro(<< "Manifold harmonic transform failed: " << e.what());
-    return 0;
+    output->GetFieldData()->AddArray(
+      vtkManifoldHarmonicsArrays::NewDoubleArray(signal.Values, signal.Name.c_str()));
   }
   return 1;
 }

@@ -38,6 +38,11 @@
  * The coefficients feed vtkSpectralFilter, which multiplies them by a transfer function and
  * reconstructs the signals.
  *
+ * Distributed runs: each process sums over its own points (points flagged DUPLICATEPOINT in the
+ * point ghost array count 0) and the coefficients are then added over all processes, so every
+ * process gets the coefficients of the whole surface. The spectrum table is filled on process 0
+ * only, so that ParaView, which appends the tables of all processes, shows it once.
+ *
  * @warning The harmonics are read in place (no copy of the n by m basis). The transform costs
  * n * m * c multiply-adds per signal. Missing basis arrays, or arrays that disagree on n or m,
  * are errors.

@@ -6,13 +6,21 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsParallel.h"
+#include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTable.h"
+
+#include "Spectral/Operators.h"
 
 #include <algorithm>
 #include <cmath>
@@ -131,14 +139,77 @@ spectral::FilterParameters Parameters(vtkSpectralFilter* self)
   return parameters;
 }
 
+/// The Nyquist frequency pi / (mean edge length) of the whole mesh: in a distributed run the
+/// edge lengths and the triangle counts of all processes are added up (collective).
+/// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
+double NyquistFrequency(vtkMultiProcessController* controller, vtkPolyData* input)
+{
+  std::vector<double> sums = { 0.0, 0.0 };
+  if (input->GetNumberOfPoints() > 0)
+  {
+    const spectral::TriangleMesh mesh = ToTriangleMesh(input);
+    sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
+    sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
+  }
+  if (controller)
+  {
+    vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
+  }
+  const double h = sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
+  return h > 0.0 && std::isfinite(h) ? vtkMath::Pi() / h : 0.0;
+}
+
 /// Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
 double HighFrequencyGain(const spectral::FilterParameters& parameters,
-  vtkPolyData* input,
+  double nyquist,
   const spectral::Vector& lambda)
 {
+  if (nyquist <= 0.0)
+  {
+    throw spectral::InvalidInput(
+      "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
+  }
   const double highestComputed = std::sqrt(std::max(lambda.maxCoeff(), 0.0));
-  const double nyquist = spectral::NyquistFrequency(ToTriangleMesh(input));
   return spectral::MeanGain(parameters, highestComputed, nyquist);
+}
+
+/// The spectrum table: Index, Frequency, Gain, then the magnitudes before and after filtering.
+void FillSpectrum(const spectral::Vector& lambda,
+  const spectral::Vector& gains,
+  const std::vector<FilterJob>& jobs,
+  vtkTable* spectrum)
+{
+  const vtkIdType m = lambda.size();
+  vtkNew<vtkIdTypeArray> index;
+  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
+  index->SetNumberOfTuples(m);
+  vtkNew<vtkDoubleArray> frequency;
+  frequency->SetName(vtkManifoldHarmonicTransform::FrequencyColumnName());
+  frequency->SetNumberOfTuples(m);
+  vtkNew<vtkDoubleArray> gain;
+  gain->SetName(vtkSpectralFilter::GainColumnName());
+  gain->SetNumberOfTuples(m);
+  for (vtkIdType k = 0; k < m; ++k)
+  {
+    index->SetValue(k, k);
+    frequency->SetValue(k, std::sqrt(std::max(lambda[k], 0.0)));
+    gain->SetValue(k, gains[k]);
+  }
+  spectrum->AddColumn(index);
+  spectrum->AddColumn(frequency);
+  spectrum->AddColumn(gain);
+  const std::string magnitude = vtkManifoldHarmonicTransform::MagnitudeSuffix();
+  const std::string filtered = vtkSpectralFilter::FilteredSuffix();
+  for (const FilterJob& job : jobs)
+  {
+    const vtkManifoldHarmonicsArrays::Signal coefficients(job.Coefficients);
+    const spectral::RowMatrix before = coefficients.View().rowwise().norm();
+    const spectral::RowMatrix after = gains.cwiseAbs().cwiseProduct(before.col(0));
+    spectrum->AddColumn(
+      vtkManifoldHarmonicsArrays::NewDoubleArray(before, (job.Name + magnitude).c_str()));
+    spectrum->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
+      after, (job.Name + filtered + magnitude).c_str()));
+  }
 }
 
 /// Points that no triangle uses (zero mass, zero harmonics) are not part of the surface: they
@@ -200,9 +271,33 @@ vtkSpectralFilter::vtkSpectralFilter()
   this->Time = 0.0;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
+  this->SetNumberOfOutputPorts(2);
   this->ControlPoints->SetNumberOfComponents(2);
   this->AddControlPoint(0.0, 1.0);
   this->AddControlPoint(1.0, 0.0);
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkSpectralFilter::GetSpectrumOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralFilter::GainColumnName()
+{
+  return "Gain";
 }
 
 //------------------------------------------------------------------------------
@@ -298,10 +393,19 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
+  // Collective in a distributed run, so before any return.
+  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
+  const double nyquist =
+    this->ReinjectHighFrequencies ? ::NyquistFrequency(controller, input) : 0.0;
+  const bool writeSpectrum = !controller || controller->GetLocalProcessId() == 0;
   if (input->GetNumberOfPoints() == 0)
   {
-    vtkWarningMacro(<< "No data to filter!");
+    if (!controller)
+    {
+      vtkWarningMacro(<< "No data to filter!");
+    }
     return 1;
   }
 
@@ -320,22 +424,25 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     vtkErrorMacro(<< mismatch);
     return 0;
   }
-  if (jobs.empty())
-  {
-    vtkWarningMacro(<< "Nothing to filter: no '<Array>"
-                    << vtkManifoldHarmonicTransform::CoefficientsSuffix()
-                    << "' field data; apply ManifoldHarmonicTransform upstream.");
-    return 1;
-  }
-
   this->SetProgressText("Spectral filter");
   try
   {
     const spectral::FilterParameters parameters = Parameters(this);
     const spectral::Vector lambda = basis.EigenvalueVector();
     const spectral::Vector gains = spectral::Gains(parameters, lambda);
+    if (writeSpectrum)
+    {
+      FillSpectrum(lambda, gains, jobs, spectrum);
+    }
+    if (jobs.empty())
+    {
+      vtkWarningMacro(<< "Nothing to filter: no '<Array>"
+                      << vtkManifoldHarmonicTransform::CoefficientsSuffix()
+                      << "' field data; apply ManifoldHarmonicTransform upstream.");
+      return 1;
+    }
     const double highFrequencyGain =
-      this->ReinjectHighFrequencies ? HighFrequencyGain(parameters, input, lambda) : 0.0;
+      this->ReinjectHighFrequencies ? HighFrequencyGain(parameters, nyquist, lambda) : 0.0;
     vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", Cutoff " << this->Cutoff
                   << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
                   << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "

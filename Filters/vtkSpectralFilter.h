@@ -58,6 +58,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 class vtkDoubleArray;
+class vtkTable;
 
 class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkPolyDataAlgorithm
 {
@@ -190,9 +191,25 @@ public:
    */
   static const char* FilteredSuffix();
 
+  /**
+   * The spectrum table of output port 1 ("Spectrum"), one row per harmonic: `Index` (k),
+   * `Frequency` (omega_k), `Gain` (F(omega_k)) and, per filtered signal, `<Signal>_Magnitude`
+   * (norm of the coefficient tuple before filtering) and `<Signal>_Filtered_Magnitude` (after).
+   * It is recomputed whenever a parameter changes, so a line chart of it shows the transfer
+   * function over the spectrum. In a distributed run only process 0 fills it.
+   */
+  vtkTable* GetSpectrumOutput();
+
+  /**
+   * Name of the gain column of the spectrum table: `Gain`.
+   */
+  static const char* GainColumnName();
+
 protected:
   vtkSpectralFilter();
   ~vtkSpectralFilter() override;
+
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
 
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
