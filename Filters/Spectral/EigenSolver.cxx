@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <random>
 #include <string>
@@ -282,6 +283,53 @@ Band RunBand(const ShiftInvertOp& op, const MassOp& mass, double sigma, int nev,
 }
 
 /**
+ * The dense products of the block iteration, split by rows over two threads: they stream the
+ * n-row basis through memory once per call, and each thread takes half of the rows.
+ */
+void SplitRows(Eigen::Index n, const std::function<void(Eigen::Index, Eigen::Index)>& work)
+{
+  const Eigen::Index half = n / 2;
+  if (half < 4096)
+  {
+    work(0, n);
+    return;
+  }
+  std::thread helper([&work, half]() { work(0, half); });
+  work(half, n - half);
+  helper.join();
+}
+
+/// B^T A for tall n-row A and B (small result), summed over two row halves.
+DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& A)
+{
+  DenseMatrix parts[2] = { DenseMatrix::Zero(B.cols(), A.cols()),
+    DenseMatrix::Zero(B.cols(), A.cols()) };
+  SplitRows(A.rows(), [&](Eigen::Index first, Eigen::Index count) {
+    parts[first == 0 ? 0 : 1].noalias() =
+      B.middleRows(first, count).transpose() * A.middleRows(first, count);
+  });
+  return parts[0] + parts[1];
+}
+
+/// A -= B C for tall n-row A and B, by row halves.
+void SubtractProduct(DenseMatrix& A, const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C)
+{
+  SplitRows(A.rows(), [&](Eigen::Index first, Eigen::Index count) {
+    A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C;
+  });
+}
+
+/// B C for a tall n-row B, by row halves.
+DenseMatrix Product(const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C)
+{
+  DenseMatrix out(B.rows(), C.cols());
+  SplitRows(B.rows(), [&](Eigen::Index first, Eigen::Index count) {
+    out.middleRows(first, count).noalias() = B.middleRows(first, count) * C;
+  });
+  return out;
+}
+
+/**
  * M-orthonormalize the columns of W in place (two passes of SVQB: eigen-decomposition of the
  * Gram matrix) and return R with W_in = W_out R. Directions whose norm fell below `floor`
  * (the block is nearly inside the span of Basis) are replaced by random vectors M-orthogonal to
@@ -352,7 +400,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
   const Vector inverseMass = (M * Vector::Ones(M.cols())).cwiseInverse();
   Clock::time_point start = Clock::now();
   const Eigen::Index n = M.rows();
-  const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(32, nev / 6)), n / 4 + 1);
+  const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(24, nev / 6)), n / 4 + 1);
   Eigen::Index maxDim = std::max<Eigen::Index>(3 * nev + 2 * b, nev + 6 * b) * (attempt + 2) / 2;
   maxDim = std::min<Eigen::Index>(maxDim, n - b);
   if (maxDim < nev + b)
@@ -391,10 +439,10 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       start = Clock::now();
       const double reference = W.cwiseAbs2().colwise().sum().maxCoeff();
       const auto basis = V.leftCols(filled);
-      DenseMatrix C = basis.transpose() * (M * W);
-      W.noalias() -= basis * C;
-      const DenseMatrix C2 = basis.transpose() * (M * W);
-      W.noalias() -= basis * C2;
+      DenseMatrix C = TransposeProduct(basis, M * W);
+      SubtractProduct(W, basis, C);
+      const DenseMatrix C2 = TransposeProduct(basis, M * W);
+      SubtractProduct(W, basis, C2);
       C += C2;
       const DenseMatrix R = Orthonormalize(W, M, basis, 1e-26 * reference, generator);
       T.block(0, applied, filled, b) = C;
@@ -485,7 +533,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
         band.Values[i] = values[static_cast<std::size_t>(i)].first;
         Y.col(i) = ritz.eigenvectors().col(values[static_cast<std::size_t>(i)].second);
       }
-      band.Vectors.noalias() = V.leftCols(applied) * Y;
+      band.Vectors = Product(V.leftCols(applied), Y);
       stats.Seconds.RayleighRitz += SecondsSince(start);
       return band;
     }
@@ -501,7 +549,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       Y.col(i) = ritz.eigenvectors().col(k);
       kept[i] = theta[k];
     }
-    const DenseMatrix X = V.leftCols(applied) * Y;
+    const DenseMatrix X = Product(V.leftCols(applied), Y);
     const DenseMatrix last = V.middleCols(applied, b);
     const DenseMatrix link = T.block(applied, 0, b, applied) * Y;
     V.leftCols(keep) = X;
@@ -883,6 +931,10 @@ Vector RelativeResiduals(
       reference = std::min(reference, std::abs(lambda[k]));
     }
   }
+  // Without a non-zero eigenvalue among the pairs (m = 1, or only the constants of components),
+  // fall back to a small fraction of the operator's scale, the ratio of the traces.
+  const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
+  reference = std::max(reference, 1e-6 * traceRatio);
   const DenseMatrix R = L * Phi - (M * Phi) * lambda.asDiagonal();
   Vector out(lambda.size());
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
