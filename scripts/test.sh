@@ -79,7 +79,7 @@ if [ "${SKIP_SANITIZE:-0}" != 1 ]; then
     echo "=== Fuzzing the core for ${fuzz_seconds} s"
     mkdir -p "${sanitize_dir}/fuzz-corpus" "${sanitize_dir}/fuzz-findings"
     (cd "${sanitize_dir}/fuzz-findings" && OPENBLAS_NUM_THREADS=1 \
-      "${sanitize_dir}/FuzzCore" -max_total_time="${fuzz_seconds}" -max_len=512 \
+      "${sanitize_dir}/FuzzCore" -seed=1 -max_total_time="${fuzz_seconds}" -max_len=512 \
       -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 "${sanitize_dir}/fuzz-corpus") || status=1
   fi
   echo "=== Sanitizer stage took $((SECONDS - stage_start)) s"

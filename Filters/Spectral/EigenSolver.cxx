@@ -591,6 +591,10 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
   const int first = accepted.CountBelow(windowLow);
   const int fromAccepted = accepted.Count() - first;
   const Eigen::Index p = fromAccepted + band.Values.size();
+  if (p == 0)
+  {
+    return;
+  }
   DenseMatrix Y(accepted.Vectors.rows(), p);
   Y.leftCols(fromAccepted) = accepted.Vectors.middleCols(first, fromAccepted);
   Y.rightCols(band.Values.size()) = band.Vectors;
@@ -820,7 +824,7 @@ EigenResult BandEigenpairs(
     }
     proven = sigma;
     attempt = 0;
-    if (!(reference > 0.0))
+    if (!(reference > 0.0) && trusted.Values.size() > 0)
     {
       const double top = std::abs(trusted.Values[trusted.Values.size() - 1]);
       for (Eigen::Index i = 0; i < trusted.Values.size(); ++i)
