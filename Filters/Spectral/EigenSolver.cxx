@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "EigenSolver.h"
+#include "SupernodalLDLT.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <thread>
@@ -36,27 +38,20 @@ std::string Str(double value)
 }
 
 /**
- * CHOLMOD simplicial LDL^T of L - sigma M. The pattern of L + M is analysed once; each shift
- * reuses that analysis (fill-reducing ordering and symbolic factor). The pivots D give the
- * inertia of L - sigma M.
+ * CHOLMOD's simplicial LDL^T (FactorizationMethod::Simplicial): one column at a time, the
+ * reference that the supernodal factorization is tested against.
  */
-class ShiftedFactor : public Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>
+class SimplicialFactor : public Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>
 {
 public:
-  ShiftedFactor(const SparseMatrix& L, const SparseMatrix& M)
-    : StiffnessMatrix(L)
-    , MassMatrix(M)
-  {
-    this->analyzePattern(SparseMatrix(L + M));
-  }
-  ShiftedFactor(const ShiftedFactor&) = delete;
-  ShiftedFactor& operator=(const ShiftedFactor&) = delete;
+  explicit SimplicialFactor(const SparseMatrix& pattern) { this->analyzePattern(pattern); }
+  SimplicialFactor(const SimplicialFactor&) = delete;
+  SimplicialFactor& operator=(const SimplicialFactor&) = delete;
 
-  /// Factor L - sigma M. Returns false if a pivot is zero or not finite.
-  bool Factor(double sigma)
+  /// Factor A. Returns false if a pivot is zero or not finite.
+  bool Factorize(const SparseMatrix& A)
   {
-    this->Shifted = this->StiffnessMatrix - sigma * this->MassMatrix;
-    this->factorize(this->Shifted);
+    this->factorize(A);
     if (this->info() != Eigen::Success)
     {
       return false;
@@ -77,92 +72,69 @@ public:
     return true;
   }
 
-  /// Number of negative pivots of the last factorization: eigenvalues below its shift.
+  /// Number of negative pivots of the last factorization.
   int NegativePivots() const { return this->Negative; }
+
+  /// X = A^-1 B with Eigen's solve on CHOLMOD's factor.
+  DenseMatrix SolveBlock(const DenseMatrix& B) const { return this->solve(B); }
+
+private:
+  int Negative = 0;
+};
+
+/**
+ * The factorization of L - sigma M for a sequence of shifts. The pattern of L + M is analysed
+ * once (fill-reducing ordering, symbolic factor); each shift reuses that analysis. The pivots
+ * give the inertia of L - sigma M: the number of eigenvalues below sigma.
+ */
+class ShiftedFactor
+{
+public:
+  ShiftedFactor(const SparseMatrix& L, const SparseMatrix& M, FactorizationMethod method)
+    : StiffnessMatrix(L)
+    , MassMatrix(M)
+  {
+    const SparseMatrix pattern = L + M;
+    if (method == FactorizationMethod::Simplicial)
+    {
+      this->Simplicial.reset(new SimplicialFactor(pattern));
+    }
+    else
+    {
+      this->Supernodal.reset(new SupernodalLDLT(pattern));
+    }
+  }
+
+  /// Factor L - sigma M. Returns false if a pivot is zero or not finite.
+  bool Factor(double sigma)
+  {
+    this->Shifted = this->StiffnessMatrix - sigma * this->MassMatrix;
+    return this->Supernodal ? this->Supernodal->Factorize(this->Shifted)
+                            : this->Simplicial->Factorize(this->Shifted);
+  }
+
+  /// Number of negative pivots of the last factorization: eigenvalues below its shift.
+  int NegativePivots() const
+  {
+    return this->Supernodal ? this->Supernodal->NegativePivots()
+                            : this->Simplicial->NegativePivots();
+  }
 
   /// L - sigma M of the last factorization.
   const SparseMatrix& ShiftedMatrix() const { return this->Shifted; }
 
-  /**
-   * X = (L - sigma M)^-1 B for a block of right-hand sides. The triangular solves are bound by
-   * reading the factor, so they run on the factor's arrays directly with the block stored by
-   * rows: every entry of the factor, read once, updates all columns at once. The two halves of
-   * the block are solved on two threads.
-   */
+  /// X = (L - sigma M)^-1 B for a block of right-hand sides.
   DenseMatrix SolveBlock(const DenseMatrix& B) const
   {
-    DenseMatrix X(B.rows(), B.cols());
-    const Eigen::Index half = B.cols() / 2;
-    if (half == 0)
-    {
-      this->SolveColumns(B, X, 0, B.cols());
-      return X;
-    }
-    std::thread helper([this, &B, &X, half]() { this->SolveColumns(B, X, 0, half); });
-    this->SolveColumns(B, X, half, B.cols() - half);
-    helper.join();
-    return X;
+    return this->Supernodal ? this->Supernodal->Solve(B) : this->Simplicial->SolveBlock(B);
   }
 
 private:
-  /// Columns [first, first + count) of X = (P^T L D L^T P)^-1 B.
-  void SolveColumns(
-    const DenseMatrix& B, DenseMatrix& X, Eigen::Index first, Eigen::Index count) const
-  {
-    using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    const cholmod_factor* f = this->m_cholmodFactor;
-    const Eigen::Index n = static_cast<Eigen::Index>(f->n);
-    const int* colStart = static_cast<const int*>(f->p);
-    const int* rows = static_cast<const int*>(f->i);
-    const int* colCount = static_cast<const int*>(f->nz);
-    const double* values = static_cast<const double*>(f->x);
-    const int* perm = static_cast<const int*>(f->Perm);
-    RowBlock Y(n, count);
-    for (Eigen::Index k = 0; k < n; ++k)
-    {
-      Y.row(k) = B.row(perm[k]).segment(first, count);
-    }
-    double* y = Y.data();
-    for (Eigen::Index j = 0; j < n; ++j) // L y = P b
-    {
-      const double* yj = y + j * count;
-      for (int e = colStart[j] + 1; e < colStart[j] + colCount[j]; ++e)
-      {
-        double* yi = y + static_cast<Eigen::Index>(rows[e]) * count;
-        const double l = values[e];
-        for (Eigen::Index c = 0; c < count; ++c)
-        {
-          yi[c] -= l * yj[c];
-        }
-      }
-    }
-    for (Eigen::Index j = 0; j < n; ++j) // D z = y
-    {
-      Y.row(j) /= values[colStart[j]];
-    }
-    for (Eigen::Index j = n - 1; j >= 0; --j) // L^T w = z
-    {
-      double* yj = y + j * count;
-      for (int e = colStart[j] + 1; e < colStart[j] + colCount[j]; ++e)
-      {
-        const double* yi = y + static_cast<Eigen::Index>(rows[e]) * count;
-        const double l = values[e];
-        for (Eigen::Index c = 0; c < count; ++c)
-        {
-          yj[c] -= l * yi[c];
-        }
-      }
-    }
-    for (Eigen::Index k = 0; k < n; ++k)
-    {
-      X.row(perm[k]).segment(first, count) = Y.row(k);
-    }
-  }
-
   const SparseMatrix& StiffnessMatrix;
   const SparseMatrix& MassMatrix;
   SparseMatrix Shifted;
-  int Negative = 0;
+  std::unique_ptr<SupernodalLDLT> Supernodal;
+  std::unique_ptr<SimplicialFactor> Simplicial;
 };
 
 /// Spectra operation y = (L - sigma M)^-1 x on a ShiftedFactor; polls for cancellation.
@@ -175,7 +147,7 @@ public:
     : Factor(factor)
     , Watch(monitor)
     , Size(n)
-    , In(n)
+    , In(n, 1)
   {
   }
   Eigen::Index rows() const { return this->Size; }
@@ -186,14 +158,14 @@ public:
   {
     this->Watch.ThrowIfCancelled();
     this->In = Eigen::Map<const Vector>(xIn, this->Size);
-    Eigen::Map<Vector>(yOut, this->Size) = this->Factor.solve(this->In);
+    Eigen::Map<Vector>(yOut, this->Size) = this->Factor.SolveBlock(this->In);
   }
 
 private:
   const ShiftedFactor& Factor;
   const Monitor& Watch;
   Eigen::Index Size;
-  mutable Vector In;
+  mutable DenseMatrix In;
 };
 
 /// Spectra operation y = M x.
@@ -400,7 +372,9 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
   const Vector inverseMass = (M * Vector::Ones(M.cols())).cwiseInverse();
   Clock::time_point start = Clock::now();
   const Eigen::Index n = M.rows();
-  const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(24, nev / 6)), n / 4 + 1);
+  // Small blocks raise the polynomial degree per application (faster convergence); too small
+  // blocks make the block solves and products slow. nev / 8 measured best for nev ~ 100.
+  const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(16, nev / 8)), n / 4 + 1);
   Eigen::Index maxDim = std::max<Eigen::Index>(3 * nev + 2 * b, nev + 6 * b) * (attempt + 2) / 2;
   maxDim = std::min<Eigen::Index>(maxDim, n - b);
   if (maxDim < nev + b)
@@ -641,7 +615,7 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
 /// Sizes of the band-by-band iteration.
 int DefaultBandSize(int m)
 {
-  return std::max(50, std::min(160, m));
+  return std::max(50, std::min(100, m));
 }
 
 /// All eigenpairs of the dense pencil, then the m smallest.
@@ -672,7 +646,7 @@ EigenResult BandEigenpairs(
 
   EigenResult result;
   Clock::time_point start = Clock::now();
-  ShiftedFactor factor(L, M);
+  ShiftedFactor factor(L, M, options.Factorization);
   result.Seconds.Factorization += SecondsSince(start);
   const ShiftInvertOp op(factor, monitor, n);
   const MassOp mass(M);
@@ -960,7 +934,7 @@ double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
 //------------------------------------------------------------------------------
 int CountEigenvaluesBelow(const SparseMatrix& L, const SparseMatrix& M, double sigma)
 {
-  ShiftedFactor factor(L, M);
+  ShiftedFactor factor(L, M, FactorizationMethod::Supernodal);
   if (!factor.Factor(sigma))
   {
     throw SolverFailure("the LDL^T factorization of L - sigma M failed at shift " + Str(sigma));

@@ -5,9 +5,10 @@
  * @brief The smallest eigenpairs of a generalized symmetric problem L h = lambda M h, band by band.
  *
  * The band-by-band shift-invert strategy follows B. Vallet and B. Levy, "Spectral Geometry
- * Processing with Manifold Harmonics" (2008), section 4: each band factors L - sigma M once with
- * CHOLMOD's LDL^T (T. Davis, SuiteSparse) and runs Spectra's implicitly restarted Lanczos on
- * (L - sigma M)^-1 M in the M inner product. Consecutive bands overlap; where they meet, the
+ * Processing with Manifold Harmonics" (2008), section 4: each band factors L - sigma M once
+ * (SupernodalLDLT on CHOLMOD's analysis, or CHOLMOD's simplicial LDL^T) and runs a block Lanczos
+ * iteration (or Spectra's implicitly restarted Lanczos) on (L - sigma M)^-1 M in the M inner
+ * product. Consecutive bands overlap; where they meet, the
  * vectors of both bands are merged by a Rayleigh-Ritz step on their joint span, so membership is
  * decided by M-orthogonality (rank), never by comparing eigenvalues. Sylvester's law of inertia
  * (the negative pivots of each LDL^T) proves that no eigenvalue below each shift was lost.
@@ -31,6 +32,15 @@ enum class LanczosMethod
   Spectra
 };
 
+/// The sparse factorization of L - sigma M behind each shift-invert band.
+enum class FactorizationMethod
+{
+  /// LDL^T on CHOLMOD's supernodal analysis with dense block kernels (SupernodalLDLT, default).
+  Supernodal,
+  /// CHOLMOD's simplicial LDL^T, one column at a time (slower; kept as the reference).
+  Simplicial
+};
+
 /// Settings of SmallestEigenpairs. The defaults suit meshes from 10^3 to 10^6 points.
 struct EigenOptions
 {
@@ -48,6 +58,8 @@ struct EigenOptions
   int DenseThreshold = 1000;
   /// The iteration within each band.
   LanczosMethod Method = LanczosMethod::Block;
+  /// The factorization of L - sigma M.
+  FactorizationMethod Factorization = FactorizationMethod::Supernodal;
 };
 
 /// Seconds spent in each stage of SmallestEigenpairs.

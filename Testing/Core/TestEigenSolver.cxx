@@ -350,6 +350,14 @@ void MethodsAgree()
     CheckSameSphereSubspaces(
       block.Eigenvectors, spectra.Eigenvectors, p.M, lmax, 1e-7, "block vs " + name);
   }
+  // The supernodal factorization (default) and CHOLMOD's simplicial one give the same pairs.
+  EigenOptions options;
+  options.Factorization = FactorizationMethod::Simplicial;
+  const EigenResult simplicial = Solve(p, m, options);
+  CheckPairs(p, simplicial, "simplicial LDL^T");
+  CheckSameValues(block.Eigenvalues, simplicial.Eigenvalues, 1e-9, "supernodal vs simplicial");
+  CheckSameSphereSubspaces(
+    block.Eigenvectors, simplicial.Eigenvectors, p.M, lmax, 1e-7, "supernodal vs simplicial");
 }
 
 //------------------------------------------------------------------------------

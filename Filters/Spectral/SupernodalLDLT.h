@@ -1,0 +1,106 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SupernodalLDLT.h
+ * @brief Supernodal LDL^T factorization of sparse symmetric (possibly indefinite) matrices.
+ *
+ * Shift-invert needs L - sigma M factored for shifts inside the spectrum, where the matrix is
+ * indefinite. CHOLMOD's supernodal factorization (dense BLAS-3 kernels, fast) is LL^T only, its
+ * LDL^T is simplicial (one column at a time, slow). This class keeps CHOLMOD for what it does
+ * best, the symbolic analysis (fill-reducing ordering, elimination tree, relaxed supernodes), and
+ * computes the numeric LDL^T on that supernodal structure itself: left-looking, each supernode
+ * a dense column block, updates from its descendants by dense products, the diagonal block
+ * factored without pivoting. Without pivoting it is the same factorization as CHOLMOD's
+ * simplicial LDL^T, so the pivots D give the inertia (Sylvester's law) of the matrix.
+ *
+ * Solves take a block of right-hand sides at once; each supernode is then a dense triangular
+ * solve and a dense product, so reading the factor is shared by all right-hand sides.
+ *
+ * Reference for the structure: T. A. Davis, "Direct Methods for Sparse Linear Systems", SIAM
+ * 2006, chapter 4; Y. Chen, T. A. Davis, W. W. Hager, S. Rajamanickam, "Algorithm 887:
+ * CHOLMOD, Supernodal Sparse Cholesky Factorization and Update/Downdate", ACM TOMS 35(3), 2008.
+ */
+#ifndef spectral_SupernodalLDLT_h
+#define spectral_SupernodalLDLT_h
+
+#include "Mesh.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace spectral
+{
+class SupernodalLDLT
+{
+public:
+  /**
+   * Fill-reducing ordering and supernodal symbolic factorization of the pattern of A (its lower
+   * triangle is read). Every matrix later passed to Factorize must have its nonzeros inside this
+   * pattern.
+   * \throws SolverFailure if CHOLMOD's analysis fails (out of memory).
+   */
+  explicit SupernodalLDLT(const SparseMatrix& pattern);
+
+  /**
+   * Numeric factorization P A P^T = L D L^T (L unit lower triangular, D diagonal, no pivoting).
+   * Only the lower triangle of A is read.
+   * \return false if a pivot is zero or not finite (A is singular to working precision, or
+   *         unpivoted elimination broke down); the factor is then unusable.
+   */
+  bool Factorize(const SparseMatrix& A);
+
+  /// Number of negative pivots of the last successful Factorize: the number of negative
+  /// eigenvalues of A.
+  int NegativePivots() const { return this->Negative; }
+
+  /**
+   * X = A^-1 B for the last factored A. The columns of B are split over two threads when there
+   * are enough of them.
+   */
+  DenseMatrix Solve(const DenseMatrix& B) const;
+
+  /// Entries stored for L (with the zeros of relaxed supernodes).
+  std::size_t FactorEntries() const { return this->Values.size(); }
+
+  /// Number of supernodes.
+  int Supernodes() const { return static_cast<int>(this->First.size()) - 1; }
+
+private:
+  /// Supernode s in place: columns [First, First + Columns), Rows row indices (its own columns
+  /// first), Values the column-major Rows x Columns block.
+  struct Node
+  {
+    int First;
+    int Columns;
+    int Rows;
+    const int* RowIndex;
+    const double* Values;
+  };
+  Node Supernode(int s) const;
+
+  /// Solve columns [first, first + count) of B into X.
+  void SolveColumns(const DenseMatrix& B, DenseMatrix& X, Eigen::Index first,
+    Eigen::Index count) const;
+
+  Eigen::Index Size = 0;
+  /// Perm[k]: the row of A that becomes row k of P A P^T; Inverse is its inverse.
+  std::vector<int> Perm;
+  std::vector<int> Inverse;
+  /// Supernode s holds columns [First[s], First[s+1]).
+  std::vector<int> First;
+  /// Rows of supernode s: RowIndex[RowStart[s] .. RowStart[s+1]), its own columns first.
+  std::vector<int> RowStart;
+  std::vector<int> RowIndex;
+  /// Values of supernode s: a column-major (rows x columns) block at Values[ValueStart[s]].
+  /// Unit diagonal of L not stored: the diagonal holds D.
+  std::vector<std::size_t> ValueStart;
+  std::vector<double> Values;
+  /// Supernode of each column.
+  std::vector<int> SupernodeOf;
+  /// The permuted lower triangle, re-filled by each Factorize.
+  SparseMatrix Permuted;
+  int Negative = 0;
+};
+} // namespace spectral
+
+#endif
