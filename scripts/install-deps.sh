@@ -19,6 +19,7 @@ packages=(
   xvfb
   xauth
   libgl1-mesa-dri
+  libqt5svg5
   mpi-default-bin
   mpi-default-dev
   python3-scipy
