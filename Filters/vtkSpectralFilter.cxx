@@ -212,21 +212,6 @@ void FillSpectrum(const spectral::Vector& lambda,
   }
 }
 
-/// Points that no triangle uses (zero mass, zero harmonics) are not part of the surface: they
-/// keep their input values instead of being scaled by the high-frequency gain.
-void KeepUnusedPoints(const spectral::Vector& mass,
-  const vtkManifoldHarmonicsArrays::Signal& x,
-  spectral::RowMatrix& y)
-{
-  for (Eigen::Index i = 0; i < mass.size(); ++i)
-  {
-    if (mass[i] == 0.0)
-    {
-      y.row(i) = x.View().row(i);
-    }
-  }
-}
-
 /// Store a filtered signal: new points, or a new or replacing point-data array. The
 /// coefficients of a replaced signal become those of the filtered one.
 void WriteSignal(const FilterJob& job,
@@ -447,15 +432,14 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
                   << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
                   << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "
                   << highFrequencyGain);
-    const spectral::BasisView H = basis.HarmonicsView();
     const spectral::Vector mass = basis.MassVector();
     for (std::size_t j = 0; j < jobs.size(); ++j)
     {
+      // The points no triangle uses (zero mass) keep their input values.
       const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
       const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
-      spectral::RowMatrix y =
-        spectral::InverseTransform(H, gains, coefficients.View(), x.View(), highFrequencyGain);
-      KeepUnusedPoints(mass, x, y);
+      const spectral::RowMatrix y =
+        basis.FilterSignal(mass, gains, coefficients.View(), x.View(), highFrequencyGain);
       WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())
