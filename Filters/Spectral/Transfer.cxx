@@ -306,7 +306,10 @@ RowMatrix Inverse(const Basis& H, const Vector& gains, const ConstRowView& coeff
       ", expected " + std::to_string(n) + " by " + std::to_string(c));
 
   // Y = H diag(gains - hf) X~ + hf X: one pass over H, block by block, each thread its rows.
-  const RowMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
+  // Each value of Y is the dot product of a row of H (contiguous) with a column of the scaled
+  // coefficients (column-major, contiguous): for the few columns of a signal this beats a
+  // matrix-matrix product, whose packing costs as much as reading H.
+  const DenseMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
   RowMatrix Y(n, c);
   const Eigen::Index block = BlockRows(H.cols());
   ForEachRowRange(n, TransformThreads(n, H.cols(), threads),
@@ -318,13 +321,12 @@ RowMatrix Inverse(const Basis& H, const Vector& gains, const ConstRowView& coeff
         auto out = Y.middleRows(i, rows);
         if (hfGain != 0.0)
         {
-          out = hfGain * X.middleRows(i, rows);
+          out = hfGain * X.middleRows(i, rows) + DoubleRows(H, i, rows, buffer).lazyProduct(scaled);
         }
         else
         {
-          out.setZero();
+          out = DoubleRows(H, i, rows, buffer).lazyProduct(scaled);
         }
-        out.noalias() += DoubleRows(H, i, rows, buffer) * scaled;
       }
     });
   return Y;
