@@ -220,8 +220,9 @@ struct GaussLegendre
 };
 
 /**
- * Rows of the basis per block product: about 256 KB of H, so that the BLAS packs each block
- * while it is in cache and the whole product reads H from memory once.
+ * Rows of the basis per block: about 256 KB of H, so that a block stays in cache while it is
+ * used (packed by the product of the forward transform, converted to double for a float basis)
+ * and the whole transform reads H from memory once.
  */
 Eigen::Index BlockRows(Eigen::Index m)
 {
