@@ -9,6 +9,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
@@ -26,9 +27,12 @@
 
 #include "Spectral/EigenSolver.h"
 #include "Spectral/IntrinsicDelaunay.h"
+#include "Spectral/Memory.h"
 #include "Spectral/Operators.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -60,63 +64,76 @@ struct CopyPointsWorker
 
 //------------------------------------------------------------------------------
 // Writes row r of an #used by m column-major matrix into row Ids[r] of a row-major buffer with
-// m values per row (the layout of a vtkDoubleArray with m components).
+// m values per row (the layout of a vtkDoubleArray or vtkFloatArray with m components).
+template <typename ValueT>
 struct ScatterRows
 {
   const spectral::DenseMatrix& Values;
   const std::vector<int>& Ids;
-  double* Out;
+  ValueT* Out;
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
     const vtkIdType m = static_cast<vtkIdType>(this->Values.cols());
     for (vtkIdType r = begin; r < end; ++r)
     {
-      double* row = this->Out + static_cast<vtkIdType>(this->Ids[r]) * m;
+      ValueT* row = this->Out + static_cast<vtkIdType>(this->Ids[r]) * m;
       for (vtkIdType k = 0; k < m; ++k)
       {
-        row[k] = this->Values(r, k);
+        row[k] = static_cast<ValueT>(this->Values(r, k));
       }
     }
   }
 };
 
 //------------------------------------------------------------------------------
-// An n by m point data array, zero on the points that Ids does not reach.
-vtkSmartPointer<vtkDoubleArray> ScatterToPoints(const char* name,
+// An n by m point data array (vtkDoubleArray or vtkFloatArray), zero on the points that Ids
+// does not reach.
+template <typename ArrayT>
+vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
   const spectral::DenseMatrix& values,
   const std::vector<int>& ids,
   vtkIdType numPts)
 {
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  auto array = vtkSmartPointer<ArrayT>::New();
   array->SetName(name);
   array->SetNumberOfComponents(static_cast<int>(values.cols()));
   array->SetNumberOfTuples(numPts);
-  array->FillValue(0.0);
-  ScatterRows scatter{ values, ids, array->GetPointer(0) };
+  array->FillValue(0);
+  ScatterRows<typename ArrayT::ValueType> scatter{ values, ids, array->GetPointer(0) };
   vtkSMPTools::For(0, static_cast<vtkIdType>(ids.size()), scatter);
   return array;
 }
 
 //------------------------------------------------------------------------------
 // Adds the harmonics and the lumped mass (point data, zero on unused points) and the eigenvalues
-// (field data) to the output. Ids maps the rows of the core's matrices to output points.
+// (field data) to the output. Ids maps the rows of the core's matrices to output points. The
+// harmonics are written as floats when `floats` is true.
 void AddBasisArrays(vtkPolyData* output,
   const spectral::EigenResult& result,
   const std::vector<int>& ids,
-  const spectral::Vector& lumped)
+  const spectral::Vector& lumped,
+  bool floats)
 {
   const vtkIdType numPts = output->GetNumberOfPoints();
   const int m = static_cast<int>(result.Eigenvalues.size());
-  auto harmonics = ScatterToPoints(
-    vtkManifoldHarmonicBasis::HarmonicsArrayName(), result.Eigenvectors, ids, numPts);
+  const char* name = vtkManifoldHarmonicBasis::HarmonicsArrayName();
+  vtkSmartPointer<vtkDataArray> harmonics;
+  if (floats)
+  {
+    harmonics = ScatterToPoints<vtkFloatArray>(name, result.Eigenvectors, ids, numPts);
+  }
+  else
+  {
+    harmonics = ScatterToPoints<vtkDoubleArray>(name, result.Eigenvectors, ids, numPts);
+  }
   for (int k = 0; k < m; ++k)
   {
     harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
   }
   output->GetPointData()->AddArray(harmonics);
-  output->GetPointData()->AddArray(
-    ScatterToPoints(vtkManifoldHarmonicBasis::MassArrayName(), lumped, ids, numPts));
+  output->GetPointData()->AddArray(ScatterToPoints<vtkDoubleArray>(
+    vtkManifoldHarmonicBasis::MassArrayName(), lumped, ids, numPts));
 
   vtkNew<vtkDoubleArray> eigenvalues;
   eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
@@ -213,20 +230,28 @@ int CheckPreparedMesh(vtkManifoldHarmonicBasis* self,
 //------------------------------------------------------------------------------
 // The arrays of a distributed run on the output of one process: its rows of the harmonics and
 // mass, the eigenvalues, and DUPLICATEPOINT flags (added to any ghost array of the input) on
-// the points that a lower process also holds.
+// the points that a lower process also holds. The harmonics are converted to floats when
+// `floats` is true.
 void AddPieceArrays(vtkPolyData* output,
   vtkPolyData* input,
-  const vtkManifoldHarmonicsParallel::PieceBasis& rows)
+  const vtkManifoldHarmonicsParallel::PieceBasis& rows,
+  bool floats)
 {
   output->ShallowCopy(input);
   const int m = static_cast<int>(rows.Eigenvalues.size());
-  rows.Harmonics->SetName(vtkManifoldHarmonicBasis::HarmonicsArrayName());
+  vtkSmartPointer<vtkDataArray> harmonics = rows.Harmonics;
+  if (floats)
+  {
+    harmonics = vtkSmartPointer<vtkFloatArray>::New();
+    harmonics->DeepCopy(rows.Harmonics);
+  }
+  harmonics->SetName(vtkManifoldHarmonicBasis::HarmonicsArrayName());
   for (int k = 0; k < m; ++k)
   {
-    rows.Harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
+    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
   }
   rows.Mass->SetName(vtkManifoldHarmonicBasis::MassArrayName());
-  output->GetPointData()->AddArray(rows.Harmonics);
+  output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
 
   vtkNew<vtkUnsignedCharArray> ghosts;
@@ -246,6 +271,59 @@ void AddPieceArrays(vtkPolyData* output,
   eigenvalues->SetNumberOfTuples(m);
   std::copy(rows.Eigenvalues.data(), rows.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
   output->GetFieldData()->AddArray(eigenvalues);
+}
+
+//------------------------------------------------------------------------------
+// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
+std::string Bytes(std::uint64_t bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4)
+  {
+    value /= 1024.0;
+    ++unit;
+  }
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
+  return text.str();
+}
+
+//------------------------------------------------------------------------------
+// Compares the memory estimate of the computation (Spectral/Memory.h) with the MemoryLimit, or
+// with the memory the system reports available. Returns the error message when it does not fit
+// (what is needed, what is available, what to change), otherwise an empty string.
+std::string MemoryProblem(
+  vtkManifoldHarmonicBasis* self, vtkIdType numPts, Eigen::Index used, int m)
+{
+  const bool floats = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT;
+  const spectral::MemoryEstimate need =
+    spectral::EstimateBasisMemory(static_cast<std::uint64_t>(numPts),
+      static_cast<std::uint64_t>(used), m, self->GetBandSize(), floats ? 4 : 8);
+  const bool limited = self->GetMemoryLimit() > 0.0;
+  const std::uint64_t available = limited
+    ? static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0)
+    : spectral::AvailableMemory();
+  if (available == 0 || need.Total() <= available)
+  {
+    return std::string(); // fits, or the system does not say
+  }
+  std::ostringstream message;
+  message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
+          << Bytes(need.Total()) << " needed (basis " << Bytes(need.Basis)
+          << ", solver eigenvectors " << Bytes(need.Eigenvectors) << ", Lanczos workspace "
+          << Bytes(need.Krylov) << ", sparse factor " << Bytes(need.Factor) << "), "
+          << Bytes(available) << " available ("
+          << (limited ? "MemoryLimit" : "reported by the system") << "). Compute fewer harmonics";
+  if (!floats)
+  {
+    message << ", set BasisPrecision to Float (saves " << Bytes(need.Basis / 2) << ")";
+  }
+  message << ", choose a smaller BandSize (now "
+          << spectral::EffectiveBandSize(m, self->GetBandSize()) << ")"
+          << (limited ? " or raise MemoryLimit." : " or free memory.");
+  return message.str();
 }
 
 //------------------------------------------------------------------------------
@@ -373,6 +451,8 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , BandSize(0)
   , Tolerance(1e-11)
   , MaxIterations(1000)
+  , BasisPrecision(DOUBLE)
+  , MemoryLimit(0.0)
 {
 }
 
@@ -448,7 +528,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
     vtkErrorMacro(<< "The manifold harmonics of the distributed surface failed on process 0.");
     return 0;
   }
-  ::AddPieceArrays(output, input, rows);
+  ::AddPieceArrays(output, input, rows, this->BasisPrecision == FLOAT);
   return 1;
 }
 
@@ -457,8 +537,9 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
-                << this->BandSize << ", tolerance "
-                << this->Tolerance << ", max iterations " << this->MaxIterations);
+                << this->BandSize << ", tolerance " << this->Tolerance << ", max iterations "
+                << this->MaxIterations << ", basis precision " << this->BasisPrecision
+                << ", memory limit " << this->MemoryLimit << " MiB");
 
   const vtkIdType numPts = input->GetNumberOfPoints();
   if (numPts == 0 || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
@@ -485,6 +566,13 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
       return 0;
     }
     const int m = ::CheckPreparedMesh(this, prepared, this->NumberOfHarmonics);
+    const std::string memory = ::MemoryProblem(this, numPts, prepared.Mesh.Vertices.rows(), m);
+    if (!memory.empty())
+    {
+      vtkErrorMacro(<< memory);
+      output->Initialize();
+      return 0;
+    }
 
     // Assemble the operators.
     spectral::Monitor cancel;
@@ -519,7 +607,8 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
     // Write the arrays.
     this->SetProgressText("Write");
     output->ShallowCopy(input);
-    ::AddBasisArrays(output, result, prepared.InputPointIds, lumped);
+    ::AddBasisArrays(
+      output, result, prepared.InputPointIds, lumped, this->BasisPrecision == FLOAT);
     this->UpdateProgress(1.0);
     return 1;
   }
@@ -557,4 +646,8 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Band Size: " << this->BandSize << " (default 0, automatic)\n";
   os << indent << "Tolerance: " << this->Tolerance << " (default 1e-11)\n";
   os << indent << "Max Iterations: " << this->MaxIterations << " (default 1000)\n";
+  os << indent << "Basis Precision: " << (this->BasisPrecision == FLOAT ? "Float" : "Double")
+     << " (default Double)\n";
+  os << indent << "Memory Limit: " << this->MemoryLimit
+     << " MiB (default 0, the memory the system reports available)\n";
 }

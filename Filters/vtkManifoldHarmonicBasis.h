@@ -17,9 +17,10 @@
  *
  * The output is a shallow copy of the input with three new arrays (names from the static
  * accessors below):
- * - point data HarmonicsArrayName() ("ManifoldHarmonics"): vtkDoubleArray with m components
- *   named Phi_0, Phi_1, ...; tuple i holds the value of every harmonic at point i. The harmonics
- *   are M-orthonormal: sum_i mass_i h_k(i) h_l(i) = delta_kl with the lumped mass.
+ * - point data HarmonicsArrayName() ("ManifoldHarmonics"): vtkDoubleArray (vtkFloatArray with
+ *   BasisPrecision FLOAT) with m components named Phi_0, Phi_1, ...; tuple i holds the value of
+ *   every harmonic at point i. The harmonics are M-orthonormal: sum_i mass_i h_k(i) h_l(i) =
+ *   delta_kl with the lumped mass (to float round-off, about 1e-7, in single precision).
  * - point data MassArrayName() ("ManifoldHarmonicsMass"): the lumped mass (one third of the area
  *   of the triangles around each point), one component. Downstream filters use it as the inner
  *   product, so they never re-assemble the operators.
@@ -27,9 +28,20 @@
  *   tuples, the eigenvalues in ascending order.
  *
  * Parameters: NumberOfHarmonics (default 100), MassMatrix (default LUMPED), Laplacian (default
- * COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles), and the solver
- * settings BandSize (default 0, automatic), Tolerance (default 1e-11) and MaxIterations
- * (default 1000).
+ * COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles), BasisPrecision
+ * (default DOUBLE; FLOAT halves the harmonics array), the solver settings BandSize (default 0,
+ * automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and MemoryLimit
+ * (default 0: the memory the system reports available).
+ *
+ * Memory: before it assembles anything, the filter estimates the memory the computation needs
+ * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
+ * formula in Filters/Spectral/Memory.h) and fails with an error saying how much is needed, how
+ * much is available and what to change if it does not fit, instead of being killed by the
+ * system during a long solve.
+ *
+ * The output can be written with the mesh (vtkXMLPolyDataWriter, binary or ASCII data mode) and
+ * read back: vtkManifoldHarmonicTransform and vtkSpectralFilter use the arrays read from the
+ * file as they are, without recomputing the basis (Filters/Testing/Cxx/TestBasisReuse.cxx).
  *
  * The eigenproblem is solved band by band with shift-invert block Lanczos iterations on sparse
  * LDL^T factorizations of L - sigma M (CHOLMOD); the inertia of each factorization proves that
@@ -46,18 +58,20 @@
  * basis. Test: Testing/ParaView/TestParallelManifoldHarmonics.py.in.
  *
  * @warning The harmonics array holds n x m doubles (100 harmonics on a million points take
- * 800 MB). Several connected components give several zero eigenvalues (one constant per
- * component) and are reported with a warning. NumberOfHarmonics is clamped to the number of
- * points that triangles use. NaN or infinite coordinates on used points are an error. Needle
- * triangles so thin that the eigenvalues span more than about 10^8 get eigenpairs verified to
- * the accuracy double precision allows (with a warning), or an error beyond 1e-4;
- * INTRINSIC_DELAUNAY removes the needles that lie inside a manifold part of the surface.
+ * 800 MB), or n x m floats with BasisPrecision FLOAT (400 MB), and the eigensolver needs about
+ * as much again in double while it runs. Several connected components give several zero
+ * eigenvalues (one constant per component) and are reported with a warning. NumberOfHarmonics
+ * is clamped to the number of points that triangles use. NaN or infinite coordinates on used
+ * points are an error. Needle triangles so thin that the eigenvalues span more than about 10^8
+ * get eigenpairs verified to the accuracy double precision allows (with a warning), or an error
+ * beyond 1e-4; INTRINSIC_DELAUNAY removes the needles that lie inside a manifold part of the surface.
  *
  * Reference: B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics",
  * Computer Graphics Forum 27(2), 2008.
  *
  * Tested by Filters/Testing/Cxx/TestManifoldHarmonicBasis.cxx,
- * Filters/Testing/Cxx/TestRobustness.cxx and Filters/Testing/Python/TestManifoldHarmonicBasis.py.
+ * Filters/Testing/Cxx/TestRobustness.cxx, Filters/Testing/Cxx/TestBasisReuse.cxx and
+ * Filters/Testing/Python/TestManifoldHarmonicBasis.py.
  *
  * @sa
  * vtkManifoldHarmonicTransform vtkSpectralFilter vtkWindowedSincPolyDataFilter
@@ -75,8 +89,9 @@ class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPolyDataA
 {
 public:
   /**
-   * Construct with 100 harmonics, the lumped mass matrix, the cotangent Laplacian, automatic
-   * band size, tolerance 1e-11 and 1000 iterations at most.
+   * Construct with 100 harmonics, the lumped mass matrix, the cotangent Laplacian, a double
+   * basis, automatic band size, tolerance 1e-11, 1000 iterations at most and the memory the
+   * system reports available as the limit.
    */
   static vtkManifoldHarmonicBasis* New();
 
@@ -181,6 +196,45 @@ public:
   vtkGetMacro(MaxIterations, int);
   ///@}
 
+  /**
+   * The value type of the harmonics array. FLOAT: vtkFloatArray, half the memory of DOUBLE;
+   * the eigensolver still works in double and the values are rounded once when written (relative
+   * error about 6e-8), which is far below what filtering a shape needs. DOUBLE: vtkDoubleArray.
+   */
+  enum BasisPrecisionType
+  {
+    FLOAT = 0,
+    DOUBLE = 1
+  };
+
+  ///@{
+  /**
+   * Choose the value type of the harmonics array: FLOAT (0, vtkFloatArray) or DOUBLE (1,
+   * vtkDoubleArray). FLOAT halves the memory of the basis (a million points and 1000 harmonics:
+   * 4 GB instead of 8 GB), in the output and in every file it is saved to;
+   * vtkManifoldHarmonicTransform and vtkSpectralFilter read either type in place and accumulate
+   * in double, so their results differ from DOUBLE's by float round-off (below 1e-7 relative in
+   * the tests). The mass and eigenvalue arrays stay double. Default is DOUBLE.
+   */
+  vtkSetClampMacro(BasisPrecision, int, FLOAT, DOUBLE);
+  vtkGetMacro(BasisPrecision, int);
+  void SetBasisPrecisionToFloat() { this->SetBasisPrecision(FLOAT); }
+  void SetBasisPrecisionToDouble() { this->SetBasisPrecision(DOUBLE); }
+  ///@}
+
+  ///@{
+  /**
+   * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
+   * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
+   * physical pages elsewhere). When the estimate of Filters/Spectral/Memory.h exceeds it, the
+   * filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
+   * FLOAT or a smaller BandSize) and produces an empty output. Set a limit to keep room for other
+   * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
   ///@{
   /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
@@ -218,6 +272,8 @@ protected:
   int BandSize;
   double Tolerance;
   int MaxIterations;
+  int BasisPrecision;
+  double MemoryLimit;
 
 private:
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;

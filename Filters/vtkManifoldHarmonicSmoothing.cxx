@@ -18,6 +18,12 @@
 
 vtkStandardNewMacro(vtkManifoldHarmonicSmoothing);
 
+static_assert(static_cast<int>(vtkManifoldHarmonicSmoothing::FLOAT) ==
+      static_cast<int>(vtkManifoldHarmonicBasis::FLOAT) &&
+    static_cast<int>(vtkManifoldHarmonicSmoothing::DOUBLE) ==
+      static_cast<int>(vtkManifoldHarmonicBasis::DOUBLE),
+  "BasisPrecision is passed on to vtkManifoldHarmonicBasis as is");
+
 namespace
 {
 //------------------------------------------------------------------------------
@@ -39,6 +45,7 @@ double HighestFrequency(vtkPolyData* basisOutput)
 vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   : NumberOfHarmonics(100)
   , CutoffFraction(0.5)
+  , BasisPrecision(DOUBLE)
 {
 }
 
@@ -50,7 +57,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
-                << this->CutoffFraction);
+                << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
 
   // The three stages on a shallow copy, so that the internal pipeline does not touch the input.
   // In a distributed run every process executes each stage (they are collective).
@@ -59,6 +66,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->SetProgressText("Basis");
   vtkNew<vtkManifoldHarmonicBasis> basis;
   basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
+  basis->SetBasisPrecision(this->BasisPrecision);
   basis->SetInputData(copy);
   vtkNew<vtkManifoldHarmonicTransform> transform;
   transform->SetInputConnection(basis->GetOutputPort());
@@ -99,4 +107,6 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default 100)\n";
   os << indent << "CutoffFraction: " << this->CutoffFraction << " (default 0.5)\n";
+  os << indent << "BasisPrecision: " << (this->BasisPrecision == FLOAT ? "Float" : "Double")
+     << " (default Double)\n";
 }

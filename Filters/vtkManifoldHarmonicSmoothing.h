@@ -25,8 +25,11 @@
  * - NumberOfHarmonics (default 100): the m harmonics computed; more harmonics keep finer details
  *   below the cutoff and cost more time (see vtkManifoldHarmonicBasis).
  * - CutoffFraction (default 0.5, range [0.001, 1]): the cutoff as a fraction of omega_max.
+ * - BasisPrecision (default DOUBLE): the precision of the internal basis; FLOAT halves its
+ *   memory and changes the smoothed points by float round-off only.
  *
- * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles and an eigensolve.
+ * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
+ * BasisPrecision FLOAT) and an eigensolve.
  *
  * Test: Filters/Testing/Cxx/TestManifoldHarmonicSmoothing.cxx.
  *
@@ -70,6 +73,29 @@ public:
   vtkGetMacro(CutoffFraction, double);
   ///@}
 
+  /**
+   * The value type of the internal basis, as vtkManifoldHarmonicBasis::BasisPrecisionType
+   * (same values): FLOAT for a vtkFloatArray, DOUBLE for a vtkDoubleArray.
+   */
+  enum BasisPrecisionType
+  {
+    FLOAT = 0,
+    DOUBLE = 1
+  };
+
+  ///@{
+  /**
+   * Precision of the basis computed internally (vtkManifoldHarmonicBasis::BasisPrecision):
+   * FLOAT (0) halves the memory of its n x m harmonics; the eigensolver still works in double
+   * and the smoothed points differ from DOUBLE's by float round-off. DOUBLE (1). Default is
+   * DOUBLE.
+   */
+  vtkSetClampMacro(BasisPrecision, int, FLOAT, DOUBLE);
+  vtkGetMacro(BasisPrecision, int);
+  void SetBasisPrecisionToFloat() { this->SetBasisPrecision(FLOAT); }
+  void SetBasisPrecisionToDouble() { this->SetBasisPrecision(DOUBLE); }
+  ///@}
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override = default;
@@ -80,6 +106,7 @@ protected:
 
   int NumberOfHarmonics;
   double CutoffFraction;
+  int BasisPrecision;
 
 private:
   vtkManifoldHarmonicSmoothing(const vtkManifoldHarmonicSmoothing&) = delete;

@@ -125,7 +125,6 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   self->SetProgressText("Transform");
   try
   {
-    const spectral::BasisView H = basis.HarmonicsView();
     const spectral::Vector mass =
       basis.MassVector().cwiseProduct(vtkManifoldHarmonicsParallel::OwnedPoints(input));
     lambda = basis.EigenvalueVector();
@@ -134,7 +133,7 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
       const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
       coefficients.push_back({ Concatenate(signals[s].first.c_str(),
                                  vtkManifoldHarmonicTransform::CoefficientsSuffix()),
-        spectral::ForwardTransform(H, mass, signal.View()) });
+        basis.ForwardTransform(mass, signal.View()) });
       self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
     }
   }

@@ -53,6 +53,18 @@ struct WriteValues
   }
 };
 
+/// f(view) with a row-major view of the basis memory in its own precision (no copy).
+template <typename Function>
+spectral::RowMatrix InPlace(const vtkManifoldHarmonicsArrays::Basis& basis, const Function& f)
+{
+  if (basis.Floats)
+  {
+    return f(
+      spectral::FloatBasisView(basis.Floats, basis.NumberOfPoints, basis.NumberOfHarmonics));
+  }
+  return f(spectral::BasisView(basis.Doubles, basis.NumberOfPoints, basis.NumberOfHarmonics));
+}
+
 std::string Missing(const char* what, const char* name)
 {
   std::ostringstream message;
@@ -74,10 +86,23 @@ std::string Mismatch(const char* name, vtkIdType found, const char* what, vtkIdT
 namespace vtkManifoldHarmonicsArrays
 {
 //------------------------------------------------------------------------------
-spectral::BasisView Basis::HarmonicsView() const
+spectral::RowMatrix Basis::ForwardTransform(
+  const spectral::Vector& mass, const spectral::ConstRowView& X) const
 {
-  return spectral::BasisView(
-    this->Harmonics->GetPointer(0), this->NumberOfPoints, this->NumberOfHarmonics);
+  return InPlace(*this,
+    [&mass, &X](const auto& H) { return spectral::ForwardTransform(H, mass, X); });
+}
+
+//------------------------------------------------------------------------------
+spectral::RowMatrix Basis::FilterSignal(const spectral::Vector& mass,
+  const spectral::Vector& gains,
+  const spectral::ConstRowView& coefficients,
+  const spectral::ConstRowView& X,
+  double hfGain) const
+{
+  return InPlace(*this,
+    [&mass, &gains, &coefficients, &X, hfGain](const auto& H)
+    { return spectral::FilterSignal(H, mass, gains, coefficients, X, hfGain); });
 }
 
 //------------------------------------------------------------------------------
@@ -113,11 +138,20 @@ std::string FindBasis(vtkPolyData* input, Basis& basis)
   {
     return Missing("field data array", eigenvaluesName);
   }
-  basis.Harmonics = vtkArrayDownCast<vtkDoubleArray>(harmonics);
-  if (!basis.Harmonics)
+  basis.Harmonics = harmonics;
+  if (auto* doubles = vtkArrayDownCast<vtkAOSDataArrayTemplate<double>>(harmonics))
+  {
+    basis.Doubles = doubles->GetPointer(0);
+  }
+  else if (auto* floats = vtkArrayDownCast<vtkAOSDataArrayTemplate<float>>(harmonics))
+  {
+    basis.Floats = floats->GetPointer(0);
+  }
+  else
   {
     return std::string("Array '") + harmonicsName + "' is a " + harmonics->GetClassName() +
-      ", not the vtkDoubleArray that ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) writes.";
+      ", not the vtkDoubleArray or vtkFloatArray that ManifoldHarmonicBasis "
+      "(vtkManifoldHarmonicBasis) writes.";
   }
   basis.NumberOfPoints = input->GetNumberOfPoints();
   basis.NumberOfHarmonics = basis.Harmonics->GetNumberOfComponents();

@@ -6,7 +6,8 @@
  *
  * They find and check the arrays of vtkManifoldHarmonicBasis on a data set, view VTK arrays as
  * Eigen matrices (without a copy for vtkDoubleArray) and write Eigen matrices back into VTK
- * arrays. Not installed and not wrapped: this header includes Eigen.
+ * arrays. The basis array may be a vtkDoubleArray or a vtkFloatArray (BasisPrecision); both are
+ * read in place. Not installed and not wrapped: this header includes Eigen.
  */
 #ifndef vtkManifoldHarmonicsArrays_h
 #define vtkManifoldHarmonicsArrays_h
@@ -26,17 +27,33 @@ namespace vtkManifoldHarmonicsArrays
 /// The basis arrays of a data set as written by vtkManifoldHarmonicBasis.
 struct Basis
 {
-  /// n tuples of m components: component k of tuple i is H^k_i.
-  vtkDoubleArray* Harmonics = nullptr;
+  /// n tuples of m components, vtkDoubleArray or vtkFloatArray: component k of tuple i is H^k_i.
+  vtkDataArray* Harmonics = nullptr;
   /// n tuples, one component: the lumped mass D_ii.
   vtkDataArray* Mass = nullptr;
   /// m tuples, one component, ascending.
   vtkDataArray* Eigenvalues = nullptr;
   vtkIdType NumberOfPoints = 0;
   int NumberOfHarmonics = 0;
+  /// The memory of Harmonics: one of the two is set, by FindBasis.
+  const double* Doubles = nullptr;
+  const float* Floats = nullptr;
 
-  /// The harmonics as an n by m row-major matrix, viewing the array's memory.
-  spectral::BasisView HarmonicsView() const;
+  /**
+   * spectral::ForwardTransform on the harmonics in place, in their precision, on the default
+   * number of threads (spectral::TransformThreads).
+   */
+  spectral::RowMatrix ForwardTransform(
+    const spectral::Vector& mass, const spectral::ConstRowView& X) const;
+  /**
+   * spectral::FilterSignal (inverse transform with re-injection, points of zero mass kept) on
+   * the harmonics in place, in their precision, on the default number of threads.
+   */
+  spectral::RowMatrix FilterSignal(const spectral::Vector& mass,
+    const spectral::Vector& gains,
+    const spectral::ConstRowView& coefficients,
+    const spectral::ConstRowView& X,
+    double hfGain) const;
   /// The mass as a vector of length n.
   spectral::Vector MassVector() const;
   /// The eigenvalues as a vector of length m.

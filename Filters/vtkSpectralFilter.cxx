@@ -139,10 +139,8 @@ spectral::FilterParameters Parameters(vtkSpectralFilter* self)
   return parameters;
 }
 
-/// The Nyquist frequency pi / (mean edge length) of the whole mesh: in a distributed run the
-/// edge lengths and the triangle counts of all processes are added up (collective).
-/// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
-double NyquistFrequency(vtkMultiProcessController* controller, vtkPolyData* input)
+/// The sum of the edge lengths of the triangles of this process and their number of edges.
+std::vector<double> EdgeSums(vtkPolyData* input)
 {
   std::vector<double> sums = { 0.0, 0.0 };
   if (input->GetNumberOfPoints() > 0)
@@ -151,6 +149,14 @@ double NyquistFrequency(vtkMultiProcessController* controller, vtkPolyData* inpu
     sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
     sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
   }
+  return sums;
+}
+
+/// The Nyquist frequency pi / (mean edge length) of the whole mesh from the EdgeSums of this
+/// process: in a distributed run the sums of all processes are added up (collective).
+/// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
+double NyquistFrequency(vtkMultiProcessController* controller, std::vector<double> sums)
+{
   if (controller)
   {
     vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
@@ -209,21 +215,6 @@ void FillSpectrum(const spectral::Vector& lambda,
       vtkManifoldHarmonicsArrays::NewDoubleArray(before, (job.Name + magnitude).c_str()));
     spectrum->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
       after, (job.Name + filtered + magnitude).c_str()));
-  }
-}
-
-/// Points that no triangle uses (zero mass, zero harmonics) are not part of the surface: they
-/// keep their input values instead of being scaled by the high-frequency gain.
-void KeepUnusedPoints(const spectral::Vector& mass,
-  const vtkManifoldHarmonicsArrays::Signal& x,
-  spectral::RowMatrix& y)
-{
-  for (Eigen::Index i = 0; i < mass.size(); ++i)
-  {
-    if (mass[i] == 0.0)
-    {
-      y.row(i) = x.View().row(i);
-    }
   }
 }
 
@@ -397,8 +388,12 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   output->ShallowCopy(input);
   // Collective in a distributed run, so before any return.
   vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
-  const double nyquist =
-    this->ReinjectHighFrequencies ? ::NyquistFrequency(controller, input) : 0.0;
+  double nyquist = 0.0;
+  if (this->ReinjectHighFrequencies)
+  {
+    this->UpdateEdgeSums(input);
+    nyquist = ::NyquistFrequency(controller, { this->EdgeSums[0], this->EdgeSums[1] });
+  }
   const bool writeSpectrum = !controller || controller->GetLocalProcessId() == 0;
   if (input->GetNumberOfPoints() == 0)
   {
@@ -447,15 +442,14 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
                   << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
                   << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "
                   << highFrequencyGain);
-    const spectral::BasisView H = basis.HarmonicsView();
     const spectral::Vector mass = basis.MassVector();
     for (std::size_t j = 0; j < jobs.size(); ++j)
     {
+      // The points no triangle uses (zero mass) keep their input values.
       const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
       const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
-      spectral::RowMatrix y =
-        spectral::InverseTransform(H, gains, coefficients.View(), x.View(), highFrequencyGain);
-      KeepUnusedPoints(mass, x, y);
+      const spectral::RowMatrix y =
+        basis.FilterSignal(mass, gains, coefficients.View(), x.View(), highFrequencyGain);
       WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())
@@ -470,6 +464,20 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     return 0;
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralFilter::UpdateEdgeSums(vtkPolyData* input)
+{
+  // The mesh is walked again only when the input changed (a new upstream execution): changing
+  // the filter's settings alone re-uses the sums.
+  if (input->GetMTime() != this->EdgeSumsTime)
+  {
+    const std::vector<double> sums = ::EdgeSums(input);
+    this->EdgeSums[0] = sums[0];
+    this->EdgeSums[1] = sums[1];
+    this->EdgeSumsTime = input->GetMTime();
+  }
 }
 
 //------------------------------------------------------------------------------

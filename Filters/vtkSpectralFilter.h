@@ -225,6 +225,15 @@ protected:
   bool ReplaceInput;
   vtkDoubleArray* ControlPoints;
 
+  /**
+   * The sum of the edge lengths of the input's triangles and their number, behind the Nyquist
+   * frequency of the re-injection, kept with the MTime of the input they were computed on
+   * (EdgeSumsTime): when only the filter's settings change, the mesh is not walked again.
+   */
+  void UpdateEdgeSums(vtkPolyData* input);
+  double EdgeSums[2] = { 0.0, 0.0 };
+  vtkMTimeType EdgeSumsTime = 0;
+
 private:
   vtkSpectralFilter(const vtkSpectralFilter&) = delete;
   void operator=(const vtkSpectralFilter&) = delete;

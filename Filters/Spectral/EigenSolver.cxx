@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "EigenSolver.h"
+#include "Memory.h"
 #include "SupernodalLDLT.h"
 
 #include <Eigen/CholmodSupport>
@@ -612,12 +613,6 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
   }
 }
 
-/// Sizes of the band-by-band iteration.
-int DefaultBandSize(int m)
-{
-  return std::max(50, std::min(100, m));
-}
-
 /// All eigenpairs of the dense pencil, then the m smallest.
 EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int m)
 {
@@ -641,7 +636,7 @@ EigenResult BandEigenpairs(
 {
   const Eigen::Index n = L.rows();
   const int m = options.NumberOfEigenpairs;
-  const int bandSize = options.BandSize > 0 ? options.BandSize : DefaultBandSize(m);
+  const int bandSize = EffectiveBandSize(m, options.BandSize);
   const int nev = static_cast<int>(std::min<Eigen::Index>(std::min(bandSize, m + m / 4 + 10), n / 2));
 
   EigenResult result;

@@ -3,12 +3,14 @@
 #include "Transfer.h"
 
 #include "Operators.h"
+#include "Threads.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace spectral
 {
@@ -218,8 +220,9 @@ struct GaussLegendre
 };
 
 /**
- * Rows of the basis per block product: about 256 KB of H, so that the BLAS packs each block
- * while it is in cache and the whole product reads H from memory once.
+ * Rows of the basis per block: about 256 KB of H, so that a block stays in cache while it is
+ * used (packed by the product of the forward transform, converted to double for a float basis)
+ * and the whole transform reads H from memory once.
  */
 Eigen::Index BlockRows(Eigen::Index m)
 {
@@ -238,28 +241,57 @@ double Integrate(const FilterParameters& p, double a, double b)
   }
   return half * sum;
 }
-} // namespace
 
-//------------------------------------------------------------------------------
-RowMatrix ForwardTransform(const BasisView& H, const Vector& mass, const ConstRowView& X)
+/// Rows [first, first + count) of a double basis, in place.
+Eigen::Map<const RowMatrix> DoubleRows(
+  const BasisView& H, Eigen::Index first, Eigen::Index count, RowMatrix&)
+{
+  return Eigen::Map<const RowMatrix>(H.data() + first * H.cols(), count, H.cols());
+}
+
+/// Rows [first, first + count) of a float basis, converted to double into `buffer` (one block
+/// of BlockRows rows, reused from block to block: the basis itself is never copied).
+Eigen::Map<const RowMatrix> DoubleRows(
+  const FloatBasisView& H, Eigen::Index first, Eigen::Index count, RowMatrix& buffer)
+{
+  buffer = H.middleRows(first, count).cast<double>();
+  return Eigen::Map<const RowMatrix>(buffer.data(), count, H.cols());
+}
+
+/// X~ = H^T D X over row ranges on `threads` threads, one partial sum per range.
+template <typename Basis>
+RowMatrix Forward(const Basis& H, const Vector& mass, const ConstRowView& X, int threads)
 {
   Require(mass.size() == H.rows() && X.rows() == H.rows(),
     "the basis has " + std::to_string(H.rows()) + " points, the mass " +
       std::to_string(mass.size()) + " and the signal " + std::to_string(X.rows()));
-  const RowMatrix weighted = mass.asDiagonal() * X;
-  RowMatrix coefficients = RowMatrix::Zero(H.cols(), X.cols());
+  const int parts = TransformThreads(H.rows(), H.cols(), threads);
+  std::vector<RowMatrix> partial(
+    static_cast<std::size_t>(parts), RowMatrix::Zero(H.cols(), X.cols()));
   const Eigen::Index block = BlockRows(H.cols());
-  for (Eigen::Index i = 0; i < H.rows(); i += block)
+  ForEachRowRange(H.rows(), parts,
+    [&H, &mass, &X, &partial, block](int part, Eigen::Index first, Eigen::Index count) {
+      RowMatrix buffer;
+      RowMatrix weighted;
+      RowMatrix& sum = partial[static_cast<std::size_t>(part)];
+      for (Eigen::Index i = first; i < first + count; i += block)
+      {
+        const Eigen::Index rows = std::min(block, first + count - i);
+        weighted = mass.segment(i, rows).asDiagonal() * X.middleRows(i, rows);
+        sum.noalias() += DoubleRows(H, i, rows, buffer).transpose() * weighted;
+      }
+    });
+  for (std::size_t part = 1; part < partial.size(); ++part)
   {
-    const Eigen::Index rows = std::min(block, H.rows() - i);
-    coefficients.noalias() += H.middleRows(i, rows).transpose() * weighted.middleRows(i, rows);
+    partial[0] += partial[part];
   }
-  return coefficients;
+  return partial[0];
 }
 
-//------------------------------------------------------------------------------
-RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain)
+/// Y = H diag(gains - hf) X~ + hf X over row ranges on `threads` threads.
+template <typename Basis>
+RowMatrix Inverse(const Basis& H, const Vector& gains, const ConstRowView& coefficients,
+  const ConstRowView& X, double hfGain, int threads)
 {
   const Eigen::Index n = H.rows();
   const Eigen::Index c = coefficients.cols();
@@ -274,24 +306,97 @@ RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
     "the original signal is " + std::to_string(X.rows()) + " by " + std::to_string(X.cols()) +
       ", expected " + std::to_string(n) + " by " + std::to_string(c));
 
-  // Y = H diag(gains - hf) X~ + hf X: one pass over H, block by block.
-  const RowMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
+  // Y = H diag(gains - hf) X~ + hf X: one pass over H, block by block, each thread its rows.
+  // Each value of Y is the dot product of a row of H (contiguous) with a column of the scaled
+  // coefficients (column-major, contiguous): for the few columns of a signal this beats a
+  // matrix-matrix product, whose packing costs as much as reading H.
+  const DenseMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
   RowMatrix Y(n, c);
-  if (hfGain != 0.0)
-  {
-    Y = hfGain * X;
-  }
-  else
-  {
-    Y.setZero();
-  }
   const Eigen::Index block = BlockRows(H.cols());
-  for (Eigen::Index i = 0; i < n; i += block)
+  ForEachRowRange(n, TransformThreads(n, H.cols(), threads),
+    [&H, &X, &scaled, &Y, hfGain, block](int, Eigen::Index first, Eigen::Index count) {
+      RowMatrix buffer;
+      for (Eigen::Index i = first; i < first + count; i += block)
+      {
+        const Eigen::Index rows = std::min(block, first + count - i);
+        auto out = Y.middleRows(i, rows);
+        if (hfGain != 0.0)
+        {
+          out = hfGain * X.middleRows(i, rows) + DoubleRows(H, i, rows, buffer).lazyProduct(scaled);
+        }
+        else
+        {
+          out = DoubleRows(H, i, rows, buffer).lazyProduct(scaled);
+        }
+      }
+    });
+  return Y;
+}
+
+/// The checks FilterSignal adds to those of InverseTransform.
+void RequireSurfaceSignal(Eigen::Index n, const Vector& mass, const ConstRowView& X)
+{
+  Require(mass.size() == n && X.rows() == n,
+    "the basis has " + std::to_string(n) + " points, the mass " + std::to_string(mass.size()) +
+      " and the signal " + std::to_string(X.rows()));
+}
+
+/// Y with the rows of the points of zero mass (outside the surface) replaced by those of X.
+RowMatrix KeepOutsidePoints(const Vector& mass, const ConstRowView& X, RowMatrix Y)
+{
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
   {
-    const Eigen::Index rows = std::min(block, n - i);
-    Y.middleRows(i, rows).noalias() += H.middleRows(i, rows) * scaled;
+    if (mass[i] == 0.0)
+    {
+      Y.row(i) = X.row(i);
+    }
   }
   return Y;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+RowMatrix ForwardTransform(
+  const BasisView& H, const Vector& mass, const ConstRowView& X, int threads)
+{
+  return Forward(H, mass, X, threads);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix ForwardTransform(
+  const FloatBasisView& H, const Vector& mass, const ConstRowView& X, int threads)
+{
+  return Forward(H, mass, X, threads);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+{
+  return Inverse(H, gains, coefficients, X, hfGain, threads);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix InverseTransform(const FloatBasisView& H, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+{
+  return Inverse(H, gains, coefficients, X, hfGain, threads);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix FilterSignal(const BasisView& H, const Vector& mass, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+{
+  RequireSurfaceSignal(H.rows(), mass, X);
+  return KeepOutsidePoints(mass, X, Inverse(H, gains, coefficients, X, hfGain, threads));
+}
+
+//------------------------------------------------------------------------------
+RowMatrix FilterSignal(const FloatBasisView& H, const Vector& mass, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+{
+  RequireSurfaceSignal(H.rows(), mass, X);
+  return KeepOutsidePoints(mass, X, Inverse(H, gains, coefficients, X, hfGain, threads));
 }
 
 //------------------------------------------------------------------------------

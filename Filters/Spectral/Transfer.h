@@ -14,7 +14,11 @@
  * mean of F over [omega_m, omega_Nyquist] (eq. 10 of the paper).
  *
  * The basis is read through a row-major view, so the n by m point-data array of the VTK layer
- * (one tuple of m components per point) is used in place, without a copy.
+ * (one tuple of m components per point) is used in place, without a copy. It may hold doubles
+ * or floats (vtkManifoldHarmonicBasis' BasisPrecision): every function taking a basis has an
+ * overload for each, and both accumulate in double, so a float basis only adds its own rounding
+ * (relative 6e-8 per entry) to the results. The rows of the basis are split over
+ * TransformThreads() threads (see Threads.h).
  *
  * Used by vtkManifoldHarmonicTransform and vtkSpectralFilter; tested by
  * Testing/Core/TestTransfer.cxx.
@@ -31,23 +35,33 @@ namespace spectral
 {
 /// Dense row-major matrix of doubles: one point (or one harmonic) a row.
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+/// Dense row-major matrix of floats: the layout of a basis stored in single precision.
+using FloatRowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 /// n by m basis, row i holds the m harmonics at point i (a view on existing memory).
 using BasisView = Eigen::Map<const RowMatrix>;
+/// n by m basis stored as floats, row i holds the m harmonics at point i (a view).
+using FloatBasisView = Eigen::Map<const FloatRowMatrix>;
 /// n by c signals (row i = point i) or m by c coefficients (row k = harmonic k), viewed in place.
 using ConstRowView = Eigen::Map<const RowMatrix>;
 
 /**
  * Manifold harmonic transform: the coefficients of signals in an M-orthonormal basis.
  *
- * X~ = H^T (D X), that is x~_kj = sum_i H_ik D_ii X_ij. One pass over H, no copy of it.
+ * X~ = H^T (D X), that is x~_kj = sum_i H_ik D_ii X_ij. One pass over H, no copy of it: each
+ * thread sums the products of its own rows into its own m by c partial sum, and the partial
+ * sums are added at the end (so 1 and 2 threads differ by round-off only).
  *
- * \param H n by m basis, M-orthonormal for M = diag(mass) (H^T D H = I).
+ * \param H n by m basis, double or float, M-orthonormal for M = diag(mass) (H^T D H = I).
  * \param mass Lumped mass D, length n, the one the basis was computed with.
  * \param X n by c signals (c >= 1 components per point).
- * \return m by c coefficients, row k for harmonic k.
+ * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m).
+ * \return m by c coefficients, row k for harmonic k, accumulated in double.
  * \throws InvalidInput if H, mass and X disagree on n.
  */
-RowMatrix ForwardTransform(const BasisView& H, const Vector& mass, const ConstRowView& X);
+RowMatrix ForwardTransform(
+  const BasisView& H, const Vector& mass, const ConstRowView& X, int threads = 0);
+RowMatrix ForwardTransform(
+  const FloatBasisView& H, const Vector& mass, const ConstRowView& X, int threads = 0);
 
 /**
  * Inverse transform with per-harmonic gains and optional re-injection of the high frequencies.
@@ -56,16 +70,39 @@ RowMatrix ForwardTransform(const BasisView& H, const Vector& mass, const ConstRo
  * Y = H (diag(gains - hfGain) X~) + hfGain X. With gains = 1 and hfGain = 0 this is the
  * D-orthogonal projection of X onto the span of H; with m = n it reproduces X.
  *
- * \param H n by m basis.
+ * Each thread computes its own rows of Y, reading its rows of H once.
+ *
+ * \param H n by m basis, double or float.
  * \param gains Length m: the transfer function at each harmonic (see Gains).
  * \param coefficients m by c, the ForwardTransform of X.
  * \param X n by c, the original signals; may have 0 rows when hfGain == 0 (it is then unused).
  * \param hfGain Gain applied to the part of X that the basis does not represent (0: drop it).
- * \return n by c filtered signals.
+ * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m).
+ * \return n by c filtered signals, computed in double.
  * \throws InvalidInput if the sizes disagree, or X is empty while hfGain != 0.
  */
 RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain);
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads = 0);
+RowMatrix InverseTransform(const FloatBasisView& H, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads = 0);
+
+/**
+ * The filter stage of one signal, as vtkSpectralFilter runs it (and the benchmark times it):
+ * InverseTransform(H, gains, coefficients, X, hfGain, threads), after which the points of zero
+ * mass (used by no triangle, so outside the surface the basis describes) keep their value in X
+ * instead of being scaled by hfGain.
+ *
+ * \param H n by m basis, double or float.
+ * \param mass Lumped mass, length n.
+ * \param gains, coefficients, hfGain, threads As InverseTransform.
+ * \param X n by c, the original signals (required, also when hfGain == 0).
+ * \return n by c filtered signals.
+ * \throws InvalidInput as InverseTransform, and if mass or X does not have n rows.
+ */
+RowMatrix FilterSignal(const BasisView& H, const Vector& mass, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads = 0);
+RowMatrix FilterSignal(const FloatBasisView& H, const Vector& mass, const Vector& gains,
+  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads = 0);
 
 /// The transfer functions F(omega) of SpectralFilter (values match vtkSpectralFilter's enum).
 enum class FilterKind

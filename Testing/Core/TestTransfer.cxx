@@ -6,9 +6,13 @@
 #include "EigenSolver.h"
 #include "Meshes.h"
 #include "Operators.h"
+#include "Threads.h"
 #include "Transfer.h"
 
+#include <atomic>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 #include <random>
 #include <string>
 
@@ -460,6 +464,133 @@ void InvalidSizes()
   Check(Y.rows() == 42 && Y.cols() == 3, "inverse without re-injection: n x c result");
 }
 
+//------------------------------------------------------------------------------
+void FloatBasisMatchesDouble()
+{
+  // The basis of BasisPrecision Float: the same harmonics rounded to float. Transform and
+  // filter accumulate in double, so the results differ by the rounding of the basis only.
+  const int m = 60;
+  const Basis b = MakeBasis(Icosphere(3), m);
+  const Eigen::Index n = b.H.rows();
+  const FloatRowMatrix Hf = b.H.cast<float>();
+  const FloatBasisView floats(Hf.data(), n, m);
+  RowMatrix X = RandomSignals(n, 3, 8u);
+  X.col(0) = b.Mesh.Vertices.col(0);
+  const RowMatrix C = ForwardTransform(b.View(), b.Mass, View(X));
+  const RowMatrix Cf = ForwardTransform(floats, b.Mass, View(X));
+  CheckBelow(MaxAbs(Cf - C) / MaxAbs(C), 1e-5, "float basis: forward transform, relative");
+
+  FilterParameters p;
+  p.Cutoff = 0.5 * std::sqrt(b.Lambda[m - 1]);
+  const Vector gains = Gains(p, b.Lambda);
+  const double hf = 0.25;
+  const RowMatrix Y = InverseTransform(b.View(), gains, View(C), View(X), hf);
+  const RowMatrix Yf = InverseTransform(floats, gains, View(Cf), View(X), hf);
+  CheckBelow(MaxAbs(Yf - Y) / MaxAbs(Y), 1e-5, "float basis: inverse transform, relative");
+  const RowMatrix F = FilterSignal(b.View(), b.Mass, gains, View(C), View(X), hf);
+  const RowMatrix Ff = FilterSignal(floats, b.Mass, gains, View(Cf), View(X), hf);
+  CheckBelow(MaxAbs(Ff - F) / MaxAbs(F), 1e-5, "float basis: filter stage, relative");
+  CheckBelow(MaxAbs(F - Y), 0.0, "filter stage = inverse transform on a closed surface");
+}
+
+//------------------------------------------------------------------------------
+void ThreadsMatchOneThread()
+{
+  // Row ranges: every row exactly once, uneven splits, exceptions carried to the caller.
+  for (int parts : { 1, 2, 3, 7 })
+  {
+    std::vector<std::atomic<int>> seen(10);
+    ForEachRowRange(10, parts, [&seen](int, Eigen::Index first, Eigen::Index count) {
+      for (Eigen::Index i = first; i < first + count; ++i)
+      {
+        ++seen[static_cast<std::size_t>(i)];
+      }
+    });
+    bool once = true;
+    for (const auto& count : seen)
+    {
+      once = once && count == 1;
+    }
+    Check(once, std::to_string(parts) + " ranges of 10 rows: each row once");
+  }
+  CheckThrows<std::runtime_error>(
+    []() {
+      ForEachRowRange(100, 2, [](int part, Eigen::Index, Eigen::Index) {
+        if (part == 1)
+        {
+          throw std::runtime_error("range 1 failed");
+        }
+      });
+    },
+    "an exception on a helper thread reaches the caller");
+  Check(TransformThreads(100, 10) == 1, "automatic: 1 thread for a small product");
+  Check(TransformThreads(5, 1000, 8) == 5, "at most one thread a row");
+
+  // Transforms on 1, 2, 3 and 7 threads (random basis, n not a multiple of the blocks).
+  const Eigen::Index n = 10007;
+  const Eigen::Index m = 37;
+  const RowMatrix H = RandomSignals(n, m, 9u);
+  const FloatRowMatrix Hf = H.cast<float>();
+  const BasisView doubles(H.data(), n, m);
+  const FloatBasisView floats(Hf.data(), n, m);
+  const Vector mass = RandomSignals(n, 1, 10u).cwiseAbs();
+  const RowMatrix X = RandomSignals(n, 3, 11u);
+  const Vector gains = Vector::LinSpaced(m, 1.0, 0.0);
+  const RowMatrix C1 = ForwardTransform(doubles, mass, View(X), 1);
+  const RowMatrix Y1 = InverseTransform(doubles, gains, View(C1), View(X), 0.5, 1);
+  const RowMatrix C1f = ForwardTransform(floats, mass, View(X), 1);
+  const RowMatrix Y1f = InverseTransform(floats, gains, View(C1f), View(X), 0.5, 1);
+  for (int threads : { 0, 2, 3, 7 })
+  {
+    const std::string on = " on " + std::to_string(threads) + " threads";
+    const RowMatrix C = ForwardTransform(doubles, mass, View(X), threads);
+    CheckBelow(MaxAbs(C - C1) / MaxAbs(C1), 1e-13, "forward" + on + " vs 1");
+    CheckBelow(MaxAbs(InverseTransform(doubles, gains, View(C1), View(X), 0.5, threads) - Y1) /
+        MaxAbs(Y1),
+      1e-13, "inverse" + on + " vs 1");
+    const RowMatrix Cf = ForwardTransform(floats, mass, View(X), threads);
+    CheckBelow(MaxAbs(Cf - C1f) / MaxAbs(C1f), 1e-13, "float forward" + on + " vs 1");
+    CheckBelow(MaxAbs(InverseTransform(floats, gains, View(C1f), View(X), 0.5, threads) - Y1f) /
+        MaxAbs(Y1f),
+      1e-13, "float inverse" + on + " vs 1");
+  }
+}
+
+//------------------------------------------------------------------------------
+void FilterSignalKeepsOutsidePoints()
+{
+  const Eigen::Index n = 50;
+  const Eigen::Index m = 5;
+  const RowMatrix H = RandomSignals(n, m, 12u);
+  const BasisView view(H.data(), n, m);
+  Vector mass = Vector::Ones(n);
+  mass[3] = 0.0;
+  mass[17] = 0.0;
+  const RowMatrix X = RandomSignals(n, 2, 13u);
+  const RowMatrix C = ForwardTransform(view, mass, View(X));
+  const Vector gains = Vector::Constant(m, 0.5);
+  const RowMatrix Y = InverseTransform(view, gains, View(C), View(X), 0.2);
+  const RowMatrix F = FilterSignal(view, mass, gains, View(C), View(X), 0.2);
+  double inside = 0.0;
+  double outside = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    if (mass[i] == 0.0)
+    {
+      outside = std::max(outside, (F.row(i) - X.row(i)).cwiseAbs().maxCoeff());
+    }
+    else
+    {
+      inside = std::max(inside, (F.row(i) - Y.row(i)).cwiseAbs().maxCoeff());
+    }
+  }
+  CheckBelow(inside, 0.0, "points of the surface: the inverse transform");
+  CheckBelow(outside, 0.0, "points of zero mass keep their input value");
+  CheckThrows<InvalidInput>(
+    [&view, &gains, &C]() { FilterSignal(view, Vector::Ones(n), gains, View(C), NoSignal, 0.0); },
+    "filter stage without the signal");
+}
+
 const Case Cases[] = {
   { "RoundTripFullBasis", RoundTripFullBasis },
   { "ReinjectionAndProjection", ReinjectionAndProjection },
@@ -472,6 +603,9 @@ const Case Cases[] = {
   { "HeatDiffusionLimits", HeatDiffusionLimits },
   { "Nyquist", Nyquist },
   { "InvalidSizes", InvalidSizes },
+  { "FloatBasisMatchesDouble", FloatBasisMatchesDouble },
+  { "ThreadsMatchOneThread", ThreadsMatchOneThread },
+  { "FilterSignalKeepsOutsidePoints", FilterSignalKeepsOutsidePoints },
 };
 } // namespace
 

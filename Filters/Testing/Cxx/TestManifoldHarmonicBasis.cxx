@@ -1,13 +1,15 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 // Checks of vtkManifoldHarmonicBasis: output arrays, the spectrum of the unit sphere and of the
-// unit square, M-orthonormality, float/double inputs, abort, triangulation, unused points.
+// unit square, M-orthonormality, float/double inputs, abort, triangulation, unused points, the
+// float basis (BasisPrecision) and the memory guard (MemoryLimit).
 
 #include "vtkManifoldHarmonicBasis.h"
 
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -23,6 +25,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -388,6 +391,108 @@ bool TestClampAndEmpty()
     passed && passed->GetNumberOfPoints() == 0 && !Harmonics(passed), "empty input passed through");
   return ok;
 }
+
+//------------------------------------------------------------------------------
+// BasisPrecision Float: a vtkFloatArray holding the double harmonics rounded once; the mass and
+// the eigenvalues stay double, and the eigenvalues are those of the double basis.
+bool TestBasisPrecision()
+{
+  auto sphere = MakeIcosphere(3, VTK_DOUBLE);
+  const int m = 20;
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetNumberOfHarmonics(m);
+  basis->SetInputData(sphere);
+  bool ok = Check(basis->GetBasisPrecision() == vtkManifoldHarmonicBasis::DOUBLE,
+    "BasisPrecision defaults to DOUBLE");
+  basis->Update();
+  vtkNew<vtkDoubleArray> reference;
+  reference->DeepCopy(Harmonics(basis->GetOutput()));
+  vtkNew<vtkDoubleArray> referenceLambda;
+  referenceLambda->DeepCopy(Eigenvalues(basis->GetOutput()));
+
+  basis->SetBasisPrecisionToFloat();
+  basis->Update();
+  vtkPolyData* output = basis->GetOutput();
+  auto* floats = vtkFloatArray::SafeDownCast(
+    output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()));
+  ok &= Check(floats && floats->GetNumberOfComponents() == m &&
+      floats->GetNumberOfTuples() == sphere->GetNumberOfPoints(),
+    "BasisPrecision Float writes an n x m vtkFloatArray");
+  ok &= Check(Mass(output) && Eigenvalues(output), "the mass and eigenvalues stay double");
+  if (!ok)
+  {
+    return false;
+  }
+  ok &= Check(std::string(floats->GetComponentName(m - 1)) == "Phi_" + std::to_string(m - 1),
+    "float harmonics keep their component names");
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < reference->GetNumberOfValues(); ++i)
+  {
+    worst = std::max(worst,
+      std::abs(static_cast<double>(floats->GetValue(i)) -
+        static_cast<double>(static_cast<float>(reference->GetValue(i)))));
+  }
+  double lambda = 0.0;
+  for (int k = 0; k < m; ++k)
+  {
+    lambda = std::max(
+      lambda, std::abs(Eigenvalues(output)->GetValue(k) - referenceLambda->GetValue(k)));
+  }
+  std::cout << "Float basis: max |float - round(double)| " << worst << ", max |d lambda| "
+            << lambda << std::endl;
+  ok &= Check(worst == 0.0, "the float harmonics are the double ones rounded once");
+  ok &= Check(lambda < 1e-10, "the eigenvalues do not depend on BasisPrecision");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// A memory limit below the estimate: an error with the figures and the advice, an empty output,
+// no crash; BasisPrecision Float is only suggested for a double basis.
+bool TestMemoryGuard()
+{
+  auto sphere = MakeIcosphere(3, VTK_DOUBLE);
+  bool ok = true;
+  for (int precision : { vtkManifoldHarmonicBasis::DOUBLE, vtkManifoldHarmonicBasis::FLOAT })
+  {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    basis->SetNumberOfHarmonics(30);
+    basis->SetBasisPrecision(precision);
+    basis->SetMemoryLimit(0.01); // 10 KiB
+    basis->SetInputData(sphere);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    basis->AddObserver(vtkCommand::ErrorEvent, errors);
+    basis->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    basis->Update();
+    const std::string message = errors->GetErrorMessage();
+    // The text only: the output of a test must not contain the word that marks VTK errors.
+    const std::size_t start = message.find("Not enough memory");
+    const std::string text = start == std::string::npos
+      ? std::string("(no message)")
+      : message.substr(start, message.find('\n', start) - start);
+    std::cout << "Memory guard: " << text << std::endl;
+    ok &= Check(errors->GetError() && message.find("Not enough memory") != std::string::npos &&
+        message.find("needed") != std::string::npos &&
+        message.find("10.2 KiB available (MemoryLimit)") != std::string::npos &&
+        message.find("fewer harmonics") != std::string::npos &&
+        message.find("BandSize") != std::string::npos,
+      "a tiny MemoryLimit gives an error with what is needed, what is available, what to do");
+    const bool suggestsFloat = message.find("BasisPrecision to Float") != std::string::npos;
+    ok &= Check(suggestsFloat == (precision == vtkManifoldHarmonicBasis::DOUBLE),
+      "BasisPrecision Float is suggested for a double basis only");
+    ok &= Check(basis->GetOutput()->GetNumberOfPoints() == 0 && !Harmonics(basis->GetOutput()),
+      "the output is empty after the memory error");
+
+    // A limit the estimate fits in: the basis is computed.
+    basis->SetMemoryLimit(1024.0);
+    errors->Clear();
+    basis->Update();
+    ok &= Check(!errors->GetError() &&
+        basis->GetOutput()->GetPointData()->GetArray(
+          vtkManifoldHarmonicBasis::HarmonicsArrayName()),
+      "a sufficient MemoryLimit computes the basis");
+  }
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -401,5 +506,7 @@ int TestManifoldHarmonicBasis(int, char*[])
   ok &= TestQuads();
   ok &= TestUnusedPoints();
   ok &= TestClampAndEmpty();
+  ok &= TestBasisPrecision();
+  ok &= TestMemoryGuard();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -1,8 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 // Checks of vtkManifoldHarmonicSmoothing: it equals basis + transform + low-pass spectral filter
-// with the cutoff CutoffFraction * omega_max, keeps the input arrays and cells and adds no basis
-// array; and of the Spectrum output of vtkSpectralFilter: its columns and their values.
+// with the cutoff CutoffFraction * omega_max, keeps the input arrays and cells, adds no basis
+// array and gives the same points with a float basis; and of the Spectrum output of
+// vtkSpectralFilter: its columns and their values.
 
 #include "vtkManifoldHarmonicSmoothing.h"
 
@@ -131,6 +132,26 @@ bool TestSameAsThreeStages(vtkPolyData* input)
 }
 
 //------------------------------------------------------------------------------
+// BasisPrecision Float: the same smoothing to float precision (unit sphere: 1e-5 absolute).
+bool TestFloatBasis(vtkPolyData* input)
+{
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(input);
+  smoothing->SetNumberOfHarmonics(30);
+  smoothing->Update();
+  vtkNew<vtkPoints> reference;
+  reference->DeepCopy(smoothing->GetOutput()->GetPoints());
+  bool ok = Check(smoothing->GetBasisPrecision() == vtkManifoldHarmonicSmoothing::DOUBLE,
+    "BasisPrecision defaults to DOUBLE");
+  smoothing->SetBasisPrecisionToFloat();
+  smoothing->Update();
+  const double difference = MaxDistance(smoothing->GetOutput()->GetPoints(), reference);
+  std::cout << "Smoothing with a float basis moves the points by " << difference << std::endl;
+  ok &= Check(difference < 1e-5, "a float basis smooths like a double one");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 bool TestSpectrumTable(vtkPolyData* input)
 {
   vtkNew<vtkManifoldHarmonicBasis> basis;
@@ -181,6 +202,7 @@ int TestManifoldHarmonicSmoothing(int, char*[])
 {
   vtkSmartPointer<vtkPolyData> input = NoisySphere();
   bool ok = TestSameAsThreeStages(input);
+  ok &= TestFloatBasis(input);
   ok &= TestSpectrumTable(input);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

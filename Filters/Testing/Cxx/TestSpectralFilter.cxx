@@ -1,12 +1,14 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Checks of vtkSpectralFilter: identity transfer, exact round trip with m = n, linearity, a
-// low-pass of a noisy sphere against vtkWindowedSincPolyDataFilter, colour and normal arrays,
-// heat diffusion limits, re-execution of the filter alone when its parameters change, and
-// the errors and warnings of inputs that lack the basis or the coefficients.
+// Checks of vtkSpectralFilter: identity transfer, exact round trip with m = n, a float basis
+// against a double one, linearity, a low-pass of a noisy sphere against
+// vtkWindowedSincPolyDataFilter, colour and normal arrays, heat diffusion limits, re-execution of
+// the filter alone when its parameters change, and the errors and warnings of inputs that lack
+// the basis or the coefficients.
 
 #include "vtkSpectralFilter.h"
 
+#include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCommand.h"
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
@@ -39,15 +41,8 @@
 
 namespace
 {
-//------------------------------------------------------------------------------
-bool Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "ERROR: " << what << std::endl;
-  }
-  return condition;
-}
+using ManifoldHarmonicsTest::Check;
+using ManifoldHarmonicsTest::RelativeDifference;
 
 //------------------------------------------------------------------------------
 // Counts the executions of an algorithm (its EndEvent).
@@ -147,23 +142,6 @@ vtkSmartPointer<vtkPolyData> MakeSphere(int theta, int phi)
 }
 
 //------------------------------------------------------------------------------
-// max |a - b| / max |b| over all values.
-double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
-{
-  double difference = 0.0;
-  double scale = 0.0;
-  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < b->GetNumberOfComponents(); ++c)
-    {
-      difference = std::max(difference, std::abs(a->GetComponent(i, c) - b->GetComponent(i, c)));
-      scale = std::max(scale, std::abs(b->GetComponent(i, c)));
-    }
-  }
-  return difference / scale;
-}
-
-//------------------------------------------------------------------------------
 bool AllFinite(vtkDataArray* array)
 {
   for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
@@ -229,6 +207,57 @@ bool TestCompleteBasis()
   bool ok = Check(points < 1e-10, "round trip with m = n changes the points");
   ok &= Check(a < 1e-10, "round trip with m = n changes A");
   ok &= Check(normals < 1e-6, "round trip with m = n changes the float normals");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// BasisPrecision Float: the harmonics are a vtkFloatArray, and the coefficients and the
+// filtered points and arrays equal those of the double basis to float precision.
+bool TestFloatBasis()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline doubles(mesh, 60, { "A", "Normals" });
+  Pipeline floats(mesh, 60, { "A", "Normals" });
+  floats.Basis->SetBasisPrecisionToFloat();
+  for (Pipeline* pipeline : { &doubles, &floats })
+  {
+    pipeline->Filter->SetFilterKindToLowPass();
+    pipeline->Filter->SetCutoff(4.0);
+  }
+  vtkPolyData* reference = doubles.Run();
+  vtkNew<vtkTest::ErrorObserver> errors;
+  floats.Transform->AddObserver(vtkCommand::ErrorEvent, errors);
+  floats.Filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  vtkPolyData* output = floats.Run();
+  bool ok = Check(!errors->GetError(), "float basis: " + errors->GetErrorMessage());
+  const char* name = vtkManifoldHarmonicBasis::HarmonicsArrayName();
+  vtkDataArray* floatHarmonics = floats.Basis->GetOutput()->GetPointData()->GetArray(name);
+  vtkDataArray* doubleHarmonics = doubles.Basis->GetOutput()->GetPointData()->GetArray(name);
+  ok &= Check(vtkFloatArray::SafeDownCast(floatHarmonics) != nullptr,
+    "BasisPrecision Float must write the harmonics as a vtkFloatArray");
+  ok &= Check(vtkDoubleArray::SafeDownCast(doubleHarmonics) != nullptr,
+    "BasisPrecision Double must write the harmonics as a vtkDoubleArray");
+  if (!ok)
+  {
+    return false;
+  }
+  double worst = 0.0;
+  for (const char* coefficients :
+    { "Points_Coefficients", "A_Coefficients", "Normals_Coefficients" })
+  {
+    const double difference =
+      RelativeDifference(floats.Transform->GetOutput()->GetFieldData()->GetArray(coefficients),
+        doubles.Transform->GetOutput()->GetFieldData()->GetArray(coefficients));
+    std::cout << "Float basis: " << coefficients << " differ by " << difference << std::endl;
+    worst = std::max(worst, difference);
+  }
+  const double points =
+    RelativeDifference(output->GetPoints()->GetData(), reference->GetPoints()->GetData());
+  const double a = RelativeDifference(output->GetPointData()->GetArray("A_Filtered"),
+    reference->GetPointData()->GetArray("A_Filtered"));
+  std::cout << "Float basis: filtered points differ by " << points << ", A by " << a << std::endl;
+  ok &= Check(worst < 1e-5, "float basis: coefficients differ by more than 1e-5");
+  ok &= Check(points < 1e-5 && a < 1e-5, "float basis: filtered signals differ by more than 1e-5");
   return ok;
 }
 
@@ -610,6 +639,39 @@ bool TestUnusedPoint()
 }
 
 //------------------------------------------------------------------------------
+// The filter keeps the edge lengths behind the Nyquist frequency between executions: a new
+// input geometry (here the sphere scaled by 2, which halves the Nyquist frequency and so
+// changes the re-injected part) must give what a new filter gives.
+bool TestNyquistFollowsInput()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 30, {});
+  pipeline.Filter->SetFilterKindToHeatDiffusion();
+  pipeline.Filter->SetTime(0.002);
+  pipeline.Run();
+  pipeline.Filter->SetTime(0.003); // re-executes the filter alone, on the kept sums
+  pipeline.Run();
+
+  vtkNew<vtkPolyData> scaled;
+  scaled->DeepCopy(mesh);
+  for (vtkIdType i = 0; i < scaled->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    scaled->GetPoint(i, p);
+    scaled->GetPoints()->SetPoint(i, 2.0 * p[0], 2.0 * p[1], 2.0 * p[2]);
+  }
+  pipeline.Basis->SetInputData(scaled);
+  vtkPolyData* reused = pipeline.Run();
+  Pipeline fresh(scaled, 30, {});
+  fresh.Filter->SetFilterKindToHeatDiffusion();
+  fresh.Filter->SetTime(0.003);
+  const double difference =
+    RelativeDifference(reused->GetPoints()->GetData(), fresh.Run()->GetPoints()->GetData());
+  std::cout << "Filter re-run on a scaled input vs a new filter: " << difference << std::endl;
+  return Check(difference < 1e-12, "the filter re-used the Nyquist frequency of its old input");
+}
+
+//------------------------------------------------------------------------------
 // Changing the filter's parameters re-executes the filter alone.
 bool TestInteractive()
 {
@@ -691,12 +753,14 @@ int TestSpectralFilter(int, char*[])
   bool ok = true;
   ok &= TestIdentity();
   ok &= TestCompleteBasis();
+  ok &= TestFloatBasis();
   ok &= TestLinearity();
   ok &= TestNoisySphere();
   ok &= TestColorsAndNormals();
   ok &= TestHeatDiffusion();
   ok &= TestChaining();
   ok &= TestUnusedPoint();
+  ok &= TestNyquistFollowsInput();
   ok &= TestAbort();
   ok &= TestInteractive();
   ok &= TestMissingInputs();

@@ -1,0 +1,76 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Memory.h"
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h>
+#endif
+
+namespace spectral
+{
+namespace
+{
+/// MemAvailable of /proc/meminfo in bytes, 0 if there is no such line (not Linux, old kernel).
+std::uint64_t MemAvailableFromProc()
+{
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kilobytes = 0;
+  std::string unit;
+  while (meminfo >> key >> kilobytes >> unit)
+  {
+    if (key == "MemAvailable:")
+    {
+      return kilobytes * 1024;
+    }
+  }
+  return 0;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int EffectiveBandSize(int m, int bandSize)
+{
+  return bandSize > 0 ? bandSize : std::max(50, std::min(100, m));
+}
+
+//------------------------------------------------------------------------------
+MemoryEstimate EstimateBasisMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  int bytesPerValue)
+{
+  const std::uint64_t harmonics = static_cast<std::uint64_t>(std::max(m, 0));
+  const std::uint64_t band = static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize));
+  MemoryEstimate estimate;
+  estimate.Basis = n * harmonics * static_cast<std::uint64_t>(bytesPerValue);
+  estimate.Eigenvectors = nUsed * harmonics * 8;
+  estimate.Krylov = nUsed * (3 * band + 100) * 8;
+  estimate.Factor = nUsed * 80 * 12;
+  return estimate;
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t AvailableMemory()
+{
+  const std::uint64_t fromProc = MemAvailableFromProc();
+  if (fromProc > 0)
+  {
+    return fromProc;
+  }
+#if defined(_SC_AVPHYS_PAGES) && defined(_SC_PAGESIZE)
+  const long pages = sysconf(_SC_AVPHYS_PAGES);
+  const long pageSize = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && pageSize > 0)
+  {
+    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(pageSize);
+  }
+#endif
+  return 0;
+}
+} // namespace spectral

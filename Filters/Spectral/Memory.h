@@ -1,0 +1,87 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Memory.h
+ * @brief How much memory a basis computation needs, and how much the machine has available.
+ *
+ * vtkManifoldHarmonicBasis checks, before it assembles anything, that the basis it is asked for
+ * fits in memory, and fails with a message saying what to change if it does not, rather than
+ * being killed by the system halfway through a long solve.
+ *
+ * The estimate (bytes) for n points (nUsed of them used by triangles) and m harmonics is
+ *
+ *     n m b                     the output basis, b = 8 (double) or 4 (float) bytes a value
+ *   + nUsed m 8                 the solver's eigenvector block (always double)
+ *   + nUsed (3 k + 100) 8       the Lanczos workspace of a band of k pairs: its Krylov basis,
+ *                               block products and Ritz vectors
+ *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
+ *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
+ *                               (an 8-byte value and a 4-byte row index)
+ *
+ * with k the band size (the automatic band size of the eigensolver is m clamped to [50, 100]).
+ * It is an estimate, not a bound: it leaves out the mesh and the sparse operators, which are
+ * small beside these terms (a few hundred bytes a point), and the fill-in of the factor depends
+ * on the mesh. On the 100,045-point torus of bench/ManifoldHarmonicsBench with m = 500 it gives
+ * 1.22e9 bytes; the benchmark, which holds no VTK output but a row-major copy of the basis for
+ * its filter timing, measured a peak resident size of 1595 MiB (1.67e9 bytes).
+ *
+ * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestMemory.cxx.
+ */
+#ifndef spectral_Memory_h
+#define spectral_Memory_h
+
+#include <cstdint>
+
+namespace spectral
+{
+/// The terms of the memory estimate of a basis computation, in bytes.
+struct MemoryEstimate
+{
+  /// The output basis: n m values of the chosen precision.
+  std::uint64_t Basis = 0;
+  /// The eigensolver's own block of eigenvectors: nUsed m doubles.
+  std::uint64_t Eigenvectors = 0;
+  /// The Lanczos workspace of one band: nUsed (3 k + 100) doubles.
+  std::uint64_t Krylov = 0;
+  /// The sparse factor: nUsed 80 (value, index) pairs of 12 bytes.
+  std::uint64_t Factor = 0;
+
+  /// The sum of the four terms.
+  std::uint64_t Total() const
+  {
+    return this->Basis + this->Eigenvectors + this->Krylov + this->Factor;
+  }
+};
+
+/**
+ * The band size the eigensolver uses when asked for 0 (automatic): m clamped to [50, 100].
+ * \param m Number of harmonics.
+ * \param bandSize The requested band size; > 0 is returned as is.
+ */
+int EffectiveBandSize(int m, int bandSize);
+
+/**
+ * Estimate the memory of computing an n by m basis (see the file documentation for the formula).
+ * \param n Points of the output (rows of the basis array).
+ * \param nUsed Points that triangles use (unknowns of the eigenproblem), <= n.
+ * \param m Number of harmonics.
+ * \param bandSize Eigenpairs per band; 0 for the eigensolver's automatic choice.
+ * \param bytesPerValue Size of one value of the output basis: 8 (double) or 4 (float).
+ * \return The terms of the estimate.
+ */
+MemoryEstimate EstimateBasisMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  int bytesPerValue);
+
+/**
+ * The memory available to a new computation, in bytes: MemAvailable of /proc/meminfo on Linux
+ * (free memory plus the caches the kernel can drop), otherwise the free physical pages reported
+ * by sysconf(_SC_AVPHYS_PAGES).
+ * \return The available bytes, or 0 when the system reports neither.
+ */
+std::uint64_t AvailableMemory();
+} // namespace spectral
+
+#endif
