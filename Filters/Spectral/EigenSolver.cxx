@@ -18,6 +18,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace spectral
@@ -818,7 +819,9 @@ EigenResult BandEigenpairs(
   }
 
   result.Eigenvalues = Eigen::Map<const Vector>(accepted.Values.data(), m);
-  result.Eigenvectors = accepted.Vectors.leftCols(m);
+  // Hand the accepted block over without a second n x m copy (gigabytes for large meshes).
+  accepted.Vectors.conservativeResize(Eigen::NoChange, m);
+  result.Eigenvectors = std::move(accepted.Vectors);
   return result;
 }
 
@@ -908,13 +911,23 @@ Vector RelativeResiduals(
   // fall back to a small fraction of the operator's scale, the ratio of the traces.
   const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
   reference = std::max(reference, 1e-6 * traceRatio);
-  const DenseMatrix R = L * Phi - (M * Phi) * lambda.asDiagonal();
+  // A block of columns at a time: the residuals of all m pairs at once would take twice the
+  // memory of the basis.
   Vector out(lambda.size());
-  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  const Eigen::Index block = 64;
+  for (Eigen::Index first = 0; first < lambda.size(); first += block)
   {
-    const double norm = std::sqrt(R.col(k).cwiseAbs2().dot(inverseMass));
-    out[k] = norm / std::max({ std::abs(lambda[k]), reference,
-                      std::numeric_limits<double>::min() });
+    const Eigen::Index count = std::min(block, lambda.size() - first);
+    const auto columns = Phi.middleCols(first, count);
+    const DenseMatrix R =
+      L * columns - (M * columns) * lambda.segment(first, count).asDiagonal();
+    for (Eigen::Index j = 0; j < count; ++j)
+    {
+      const Eigen::Index k = first + j;
+      const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
+      out[k] = norm / std::max({ std::abs(lambda[k]), reference,
+                        std::numeric_limits<double>::min() });
+    }
   }
   return out;
 }
@@ -922,7 +935,14 @@ Vector RelativeResiduals(
 //------------------------------------------------------------------------------
 double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
 {
-  const DenseMatrix G = Phi.transpose() * (M * Phi);
+  // M Phi a block of columns at a time, not a second copy of the basis.
+  DenseMatrix G(Phi.cols(), Phi.cols());
+  const Eigen::Index block = 64;
+  for (Eigen::Index first = 0; first < Phi.cols(); first += block)
+  {
+    const Eigen::Index count = std::min(block, Phi.cols() - first);
+    G.middleCols(first, count).noalias() = Phi.transpose() * (M * Phi.middleCols(first, count));
+  }
   return (G - DenseMatrix::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
 }
 
