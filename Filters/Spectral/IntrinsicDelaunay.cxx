@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "IntrinsicDelaunay.h"
+#include "Operators.h"
 
 #include <algorithm>
 #include <array>
@@ -351,32 +352,17 @@ IntrinsicTriangulation IntrinsicDelaunay(const TriangleMesh& mesh, const Monitor
 //------------------------------------------------------------------------------
 SparseMatrix IntrinsicCotanStiffness(const IntrinsicTriangulation& T)
 {
-  const int n = T.NumberOfPoints;
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(T.Faces.rows()) * 12 + n);
-  for (int i = 0; i < n; ++i)
-  {
-    triplets.emplace_back(i, i, 0.0);
-  }
+  TriangleAssembly assembly(T.NumberOfPoints, T.Faces.rows(), 12);
   for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
   {
     for (int c = 0; c < 3; ++c)
     {
       // Side c = (i, j) is opposite corner c+2.
-      const int i = T.Faces(f, c);
-      const int j = T.Faces(f, (c + 1) % 3);
-      const double halfCot =
-        0.5 * Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3));
-      triplets.emplace_back(i, j, -halfCot);
-      triplets.emplace_back(j, i, -halfCot);
-      triplets.emplace_back(i, i, halfCot);
-      triplets.emplace_back(j, j, halfCot);
+      assembly.AddEdgeWeight(T.Faces(f, c), T.Faces(f, (c + 1) % 3),
+        0.5 * Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3)));
     }
   }
-  SparseMatrix Q(n, n);
-  Q.setFromTriplets(triplets.begin(), triplets.end());
-  Q.makeCompressed();
-  return Q;
+  return assembly.Matrix();
 }
 
 //------------------------------------------------------------------------------
@@ -397,28 +383,12 @@ Vector IntrinsicLumpedMass(const IntrinsicTriangulation& T)
 //------------------------------------------------------------------------------
 SparseMatrix IntrinsicConsistentMass(const IntrinsicTriangulation& T)
 {
-  const int n = T.NumberOfPoints;
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(T.Faces.rows()) * 9 + n);
-  for (int i = 0; i < n; ++i)
-  {
-    triplets.emplace_back(i, i, 0.0);
-  }
+  TriangleAssembly assembly(T.NumberOfPoints, T.Faces.rows(), 9);
   for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
   {
-    const double area = HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2));
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int b = 0; b < 3; ++b)
-      {
-        triplets.emplace_back(
-          T.Faces(f, a), T.Faces(f, b), area * (a == b ? 1.0 / 6.0 : 1.0 / 12.0));
-      }
-    }
+    assembly.AddMassBlock(T.Faces(f, 0), T.Faces(f, 1), T.Faces(f, 2),
+      HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)));
   }
-  SparseMatrix B(n, n);
-  B.setFromTriplets(triplets.begin(), triplets.end());
-  B.makeCompressed();
-  return B;
+  return assembly.Matrix();
 }
 } // namespace spectral

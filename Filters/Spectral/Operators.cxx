@@ -132,13 +132,7 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
 //------------------------------------------------------------------------------
 SparseMatrix CotanStiffness(const TriangleMesh& mesh)
 {
-  const Eigen::Index n = mesh.Vertices.rows();
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 12 + n);
-  for (Eigen::Index i = 0; i < n; ++i)
-  {
-    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
-  }
+  TriangleAssembly assembly(mesh.Vertices.rows(), mesh.Faces.rows(), 12);
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
     if (IsDegenerate(mesh, f))
@@ -153,17 +147,10 @@ SparseMatrix CotanStiffness(const TriangleMesh& mesh)
       const int j = mesh.Faces(f, (c + 2) % 3);
       const Point u = mesh.Vertices.row(i).transpose() - mesh.Vertices.row(k).transpose();
       const Point v = mesh.Vertices.row(j).transpose() - mesh.Vertices.row(k).transpose();
-      const double halfCot = 0.5 * u.dot(v) / u.cross(v).norm();
-      triplets.emplace_back(i, j, -halfCot);
-      triplets.emplace_back(j, i, -halfCot);
-      triplets.emplace_back(i, i, halfCot);
-      triplets.emplace_back(j, j, halfCot);
+      assembly.AddEdgeWeight(i, j, 0.5 * u.dot(v) / u.cross(v).norm());
     }
   }
-  SparseMatrix Q(n, n);
-  Q.setFromTriplets(triplets.begin(), triplets.end());
-  Q.makeCompressed();
-  return Q;
+  return assembly.Matrix();
 }
 
 //------------------------------------------------------------------------------
@@ -184,29 +171,55 @@ Vector LumpedMass(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 SparseMatrix ConsistentMass(const TriangleMesh& mesh)
 {
-  const Eigen::Index n = mesh.Vertices.rows();
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 9 + n);
-  for (Eigen::Index i = 0; i < n; ++i)
-  {
-    triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
-  }
+  TriangleAssembly assembly(mesh.Vertices.rows(), mesh.Faces.rows(), 9);
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
-    const double area = 0.5 * DoubleArea(mesh, f);
-    for (int a = 0; a < 3; ++a)
+    assembly.AddMassBlock(
+      mesh.Faces(f, 0), mesh.Faces(f, 1), mesh.Faces(f, 2), 0.5 * DoubleArea(mesh, f));
+  }
+  return assembly.Matrix();
+}
+
+//------------------------------------------------------------------------------
+TriangleAssembly::TriangleAssembly(Eigen::Index n, Eigen::Index triangles, int perTriangle)
+  : Size(n)
+{
+  this->Triplets.reserve(static_cast<std::size_t>(triangles * perTriangle + n));
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    this->Triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 0.0);
+  }
+}
+
+//------------------------------------------------------------------------------
+void TriangleAssembly::AddEdgeWeight(int i, int j, double w)
+{
+  this->Triplets.emplace_back(i, j, -w);
+  this->Triplets.emplace_back(j, i, -w);
+  this->Triplets.emplace_back(i, i, w);
+  this->Triplets.emplace_back(j, j, w);
+}
+
+//------------------------------------------------------------------------------
+void TriangleAssembly::AddMassBlock(int a, int b, int c, double area)
+{
+  const int corners[3] = { a, b, c };
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int q = 0; q < 3; ++q)
     {
-      for (int b = 0; b < 3; ++b)
-      {
-        triplets.emplace_back(
-          mesh.Faces(f, a), mesh.Faces(f, b), area * (a == b ? 1.0 / 6.0 : 1.0 / 12.0));
-      }
+      this->Triplets.emplace_back(corners[r], corners[q], area * (r == q ? 1.0 / 6.0 : 1.0 / 12.0));
     }
   }
-  SparseMatrix B(n, n);
-  B.setFromTriplets(triplets.begin(), triplets.end());
-  B.makeCompressed();
-  return B;
+}
+
+//------------------------------------------------------------------------------
+SparseMatrix TriangleAssembly::Matrix() const
+{
+  SparseMatrix A(this->Size, this->Size);
+  A.setFromTriplets(this->Triplets.begin(), this->Triplets.end());
+  A.makeCompressed();
+  return A;
 }
 
 //------------------------------------------------------------------------------

@@ -66,6 +66,29 @@ Vector LumpedMass(const TriangleMesh& mesh);
  */
 SparseMatrix ConsistentMass(const TriangleMesh& mesh);
 
+/**
+ * A sparse symmetric operator assembled from per-triangle contributions, shared by the extrinsic
+ * operators here and the intrinsic ones of IntrinsicDelaunay.h. Every diagonal entry is stored,
+ * also where it stays zero, so all operators of a mesh have the pattern of its graph plus the
+ * diagonal.
+ */
+class TriangleAssembly
+{
+public:
+  /// n unknowns; room for `perTriangle` entries of each of `triangles` triangles.
+  TriangleAssembly(Eigen::Index n, Eigen::Index triangles, int perTriangle);
+  /// Edge weight w between points i and j: -w at (i, j) and (j, i), +w at (i, i) and (j, j).
+  void AddEdgeWeight(int i, int j, double w);
+  /// Galerkin mass of a triangle of the given area: area/6 on its diagonal, area/12 off it.
+  void AddMassBlock(int a, int b, int c, double area);
+  /// The assembled matrix (duplicates summed), compressed.
+  SparseMatrix Matrix() const;
+
+private:
+  Eigen::Index Size;
+  std::vector<Eigen::Triplet<double>> Triplets;
+};
+
 /// The diagonal matrix diag(d) in sparse form.
 SparseMatrix Diagonal(const Vector& d);
 
