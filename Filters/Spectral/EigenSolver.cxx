@@ -3,6 +3,7 @@
 #include "EigenSolver.h"
 #include "Memory.h"
 #include "SupernodalLDLT.h"
+#include "Threads.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
@@ -12,12 +13,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -257,20 +256,13 @@ Band RunBand(const ShiftInvertOp& op, const MassOp& mass, double sigma, int nev,
 }
 
 /**
- * The dense products of the block iteration, split by rows over two threads: they stream the
- * n-row basis through memory once per call, and each thread takes half of the rows.
+ * The dense products of the block iteration, split by rows over two threads (ForEachRowRange):
+ * they stream the n-row basis through memory once per call, and each thread takes half of the
+ * rows. Below 8192 rows one thread does it all.
  */
-void SplitRows(Eigen::Index n, const std::function<void(Eigen::Index, Eigen::Index)>& work)
+int RowParts(Eigen::Index n)
 {
-  const Eigen::Index half = n / 2;
-  if (half < 4096)
-  {
-    work(0, n);
-    return;
-  }
-  std::thread helper([&work, half]() { work(0, half); });
-  work(half, n - half);
-  helper.join();
+  return n < 8192 ? 1 : 2;
 }
 
 /// B^T A for tall n-row A and B (small result), summed over two row halves.
@@ -278,28 +270,30 @@ DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B, const Dense
 {
   DenseMatrix parts[2] = { DenseMatrix::Zero(B.cols(), A.cols()),
     DenseMatrix::Zero(B.cols(), A.cols()) };
-  SplitRows(A.rows(), [&](Eigen::Index first, Eigen::Index count) {
-    parts[first == 0 ? 0 : 1].noalias() =
-      B.middleRows(first, count).transpose() * A.middleRows(first, count);
-  });
+  ForEachRowRange(A.rows(), RowParts(A.rows()),
+    [&](int part, Eigen::Index first, Eigen::Index count) {
+      parts[part].noalias() = B.middleRows(first, count).transpose() * A.middleRows(first, count);
+    });
   return parts[0] + parts[1];
 }
 
 /// A -= B C for tall n-row A and B, by row halves.
 void SubtractProduct(DenseMatrix& A, const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C)
 {
-  SplitRows(A.rows(), [&](Eigen::Index first, Eigen::Index count) {
-    A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C;
-  });
+  ForEachRowRange(
+    A.rows(), RowParts(A.rows()), [&](int, Eigen::Index first, Eigen::Index count) {
+      A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C;
+    });
 }
 
 /// B C for a tall n-row B, by row halves.
 DenseMatrix Product(const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C)
 {
   DenseMatrix out(B.rows(), C.cols());
-  SplitRows(B.rows(), [&](Eigen::Index first, Eigen::Index count) {
-    out.middleRows(first, count).noalias() = B.middleRows(first, count) * C;
-  });
+  ForEachRowRange(
+    B.rows(), RowParts(B.rows()), [&](int, Eigen::Index first, Eigen::Index count) {
+      out.middleRows(first, count).noalias() = B.middleRows(first, count) * C;
+    });
   return out;
 }
 
