@@ -78,6 +78,40 @@ inline TriangleMesh Icosphere(int level)
   return mesh;
 }
 
+/**
+ * The triangles of an nx by ny grid of cells whose (nx + 1) (ny + 1) points are numbered row by
+ * row (point (i, j) is j (nx + 1) + i). Cell (i, j) with corners p00, p10, p01, p11 is split
+ * along the diagonal p00-p11 where splitMain(i, j, p00, p10, p01, p11) is true, along p10-p01
+ * otherwise.
+ */
+template <typename Split>
+inline Triangles GridTriangles(int nx, int ny, const Split& splitMain)
+{
+  Triangles faces(2 * nx * ny, 3);
+  int t = 0;
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      const int p00 = j * (nx + 1) + i;
+      const int p10 = p00 + 1;
+      const int p01 = p00 + nx + 1;
+      const int p11 = p01 + 1;
+      if (splitMain(i, j, p00, p10, p01, p11))
+      {
+        faces.row(t++) << p00, p10, p11;
+        faces.row(t++) << p00, p11, p01;
+      }
+      else
+      {
+        faces.row(t++) << p00, p10, p01;
+        faces.row(t++) << p10, p11, p01;
+      }
+    }
+  }
+  return faces;
+}
+
 /// Flat a by b rectangle in the z = 0 plane, nx by ny cells, each split into two triangles
 /// along alternating diagonals.
 inline TriangleMesh Rectangle(double a, double b, int nx, int ny)
@@ -91,28 +125,8 @@ inline TriangleMesh Rectangle(double a, double b, int nx, int ny)
       mesh.Vertices.row(j * (nx + 1) + i) << a * i / nx, b * j / ny, 0.0;
     }
   }
-  mesh.Faces.resize(2 * nx * ny, 3);
-  int t = 0;
-  for (int j = 0; j < ny; ++j)
-  {
-    for (int i = 0; i < nx; ++i)
-    {
-      const int p00 = j * (nx + 1) + i;
-      const int p10 = p00 + 1;
-      const int p01 = p00 + nx + 1;
-      const int p11 = p01 + 1;
-      if ((i + j) % 2 == 0)
-      {
-        mesh.Faces.row(t++) << p00, p10, p11;
-        mesh.Faces.row(t++) << p00, p11, p01;
-      }
-      else
-      {
-        mesh.Faces.row(t++) << p00, p10, p01;
-        mesh.Faces.row(t++) << p10, p11, p01;
-      }
-    }
-  }
+  mesh.Faces = GridTriangles(
+    nx, ny, [](int i, int j, int, int, int, int) { return (i + j) % 2 == 0; });
   return mesh;
 }
 

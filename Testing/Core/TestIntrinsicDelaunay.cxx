@@ -78,30 +78,11 @@ TriangleMesh LongDiagonalSquare(int n)
       mesh.Vertices.row(j * (n + 1) + i) << (i + shift) / n, static_cast<double>(j) / n, 0.0;
     }
   }
-  mesh.Faces.resize(2 * n * n, 3);
-  int t = 0;
-  for (int j = 0; j < n; ++j)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      const int p00 = j * (n + 1) + i;
-      const int p10 = p00 + 1;
-      const int p01 = p00 + n + 1;
-      const int p11 = p01 + 1;
-      const double d0 = (mesh.Vertices.row(p11) - mesh.Vertices.row(p00)).norm();
-      const double d1 = (mesh.Vertices.row(p01) - mesh.Vertices.row(p10)).norm();
-      if (d0 >= d1)
-      {
-        mesh.Faces.row(t++) << p00, p10, p11;
-        mesh.Faces.row(t++) << p00, p11, p01;
-      }
-      else
-      {
-        mesh.Faces.row(t++) << p00, p10, p01;
-        mesh.Faces.row(t++) << p10, p11, p01;
-      }
-    }
-  }
+  const auto& points = mesh.Vertices;
+  mesh.Faces = GridTriangles(n, n, [&points](int, int, int p00, int p10, int p01, int p11) {
+    const double main = (points.row(p11) - points.row(p00)).norm();
+    return main >= (points.row(p01) - points.row(p10)).norm();
+  });
   return mesh;
 }
 
