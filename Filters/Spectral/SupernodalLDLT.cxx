@@ -20,26 +20,6 @@ using ConstBlockView = Eigen::Map<const DenseMatrix, 0, Stride>;
 using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using RowBlockView = Eigen::Map<RowBlock>;
 
-/// The blocks of a supernode's factor as the solves use them.
-struct Panel
-{
-  template <typename NodeType>
-  explicit Panel(const NodeType& node)
-    : First(node.First)
-    , Diagonal(node.Values, node.Columns, node.Columns, Stride(node.Rows))
-    , Below(node.Values + node.Columns, node.Rows - node.Columns, node.Columns, Stride(node.Rows))
-    , BelowRows(node.RowIndex + node.Columns)
-  {
-  }
-  /// First column (= first row of the diagonal block).
-  int First;
-  /// Unit lower triangular diagonal block (its diagonal holds D).
-  ConstBlockView Diagonal;
-  /// The rows below the diagonal block, and their row indices.
-  ConstBlockView Below;
-  const int* BelowRows;
-};
-
 /// Grow a scratch buffer to at least `size` entries and return its storage.
 double* Scratch(std::vector<double>& buffer, std::size_t size)
 {
@@ -48,6 +28,104 @@ double* Scratch(std::vector<double>& buffer, std::size_t size)
     buffer.resize(size);
   }
   return buffer.data();
+}
+
+/// The arrays of a factor that the solves read.
+struct FactorView
+{
+  int Supernodes;
+  const int* First;
+  const int* RowStart;
+  const int* RowIndex;
+  const std::size_t* ValueStart;
+  const double* Values;
+};
+
+/// Right-hand sides solved together by SolveRows: the width of one row of its block, a multiple
+/// of 4 (one or more SIMD registers); fewer right-hand sides are padded with zeros.
+constexpr int MaxWidth = 16;
+
+/**
+ * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
+ * the k-th entries of all W right-hand sides next to each other, and W is known at compile time,
+ * so that every update of a row is a few vector instructions. Supernodes of a surface mesh are
+ * mostly a few columns wide, too small for dense kernels to pay off: the forward solve goes
+ * column by column (each column updates the rows below it), the backward solve row by row of
+ * L^T (a dot product per column).
+ */
+template <int W>
+void SolveRows(const FactorView& f, double* Y)
+{
+  using Row = Eigen::Matrix<double, W, 1>;
+  using RowView = Eigen::Map<Row>;
+  using ConstRowView = Eigen::Map<const Row>;
+  for (int s = 0; s < f.Supernodes; ++s) // L y = P b
+  {
+    const int first = f.First[s];
+    const int columns = f.First[s + 1] - first;
+    const int count = f.RowStart[s + 1] - f.RowStart[s];
+    const int* rows = f.RowIndex + f.RowStart[s];
+    const double* values = f.Values + f.ValueStart[s];
+    for (int j = 0; j < columns; ++j)
+    {
+      const Row y = ConstRowView(Y + static_cast<std::size_t>(first + j) * W);
+      const double* column = values + static_cast<std::size_t>(j) * count;
+      for (int i = j + 1; i < count; ++i)
+      {
+        RowView(Y + static_cast<std::size_t>(rows[i]) * W) -= column[i] * y;
+      }
+    }
+  }
+  for (int s = 0; s < f.Supernodes; ++s) // D z = y
+  {
+    const int first = f.First[s];
+    const int count = f.RowStart[s + 1] - f.RowStart[s];
+    const double* values = f.Values + f.ValueStart[s];
+    for (int j = 0; j < f.First[s + 1] - first; ++j)
+    {
+      RowView(Y + static_cast<std::size_t>(first + j) * W) /=
+        values[static_cast<std::size_t>(j) * (count + 1)];
+    }
+  }
+  for (int s = f.Supernodes - 1; s >= 0; --s) // L^T x = z
+  {
+    const int first = f.First[s];
+    const int columns = f.First[s + 1] - first;
+    const int count = f.RowStart[s + 1] - f.RowStart[s];
+    const int* rows = f.RowIndex + f.RowStart[s];
+    const double* values = f.Values + f.ValueStart[s];
+    for (int j = columns - 1; j >= 0; --j)
+    {
+      RowView target(Y + static_cast<std::size_t>(first + j) * W);
+      Row x = target;
+      const double* column = values + static_cast<std::size_t>(j) * count;
+      for (int i = j + 1; i < count; ++i)
+      {
+        x -= column[i] * ConstRowView(Y + static_cast<std::size_t>(rows[i]) * W);
+      }
+      target = x;
+    }
+  }
+}
+
+/// SolveRows for a width known only at run time: 4, 8, 12 or 16.
+void SolveRowsOfWidth(const FactorView& f, int width, double* Y)
+{
+  switch (width)
+  {
+    case 4:
+      SolveRows<4>(f, Y);
+      break;
+    case 8:
+      SolveRows<8>(f, Y);
+      break;
+    case 12:
+      SolveRows<12>(f, Y);
+      break;
+    default:
+      SolveRows<16>(f, Y);
+      break;
+  }
 }
 
 /// CHOLMOD's workspace for one analysis, released on every path out.
@@ -304,57 +382,27 @@ DenseMatrix SupernodalLDLT::Solve(const DenseMatrix& B) const
 void SupernodalLDLT::SolveColumns(
   const DenseMatrix& B, DenseMatrix& X, Eigen::Index first, Eigen::Index count) const
 {
+  const FactorView factor{ this->Supernodes(), this->First.data(), this->RowStart.data(),
+    this->RowIndex.data(), this->ValueStart.data(), this->Values.data() };
   const Eigen::Index n = this->Size;
-  RowBlock Y(n, count);
-  for (Eigen::Index k = 0; k < n; ++k)
+  std::vector<double> rows;
+  for (Eigen::Index done = 0; done < count;)
   {
-    Y.row(k) = B.row(this->Perm[static_cast<std::size_t>(k)]).segment(first, count);
-  }
-  std::vector<double> scratch;
-  const int nsuper = this->Supernodes();
-  for (int s = 0; s < nsuper; ++s) // L y = P b
-  {
-    const Panel panel(this->Supernode(s));
-    auto Ys = Y.middleRows(panel.First, panel.Diagonal.rows());
-    panel.Diagonal.triangularView<Eigen::UnitLower>().solveInPlace(Ys);
-    if (panel.Below.rows() > 0)
+    const int used = static_cast<int>(std::min<Eigen::Index>(count - done, MaxWidth));
+    const int width = (used + 3) / 4 * 4;
+    rows.assign(static_cast<std::size_t>(n) * width, 0.0);
+    RowBlockView Y(rows.data(), n, width);
+    const Eigen::Index column = first + done;
+    for (Eigen::Index k = 0; k < n; ++k)
     {
-      RowBlockView T(Scratch(scratch, static_cast<std::size_t>(panel.Below.rows()) * count),
-        panel.Below.rows(), count);
-      T.noalias() = panel.Below * Ys;
-      for (Eigen::Index i = 0; i < T.rows(); ++i)
-      {
-        Y.row(panel.BelowRows[i]) -= T.row(i);
-      }
+      Y.row(k).head(used) = B.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used);
     }
-  }
-  for (int s = 0; s < nsuper; ++s) // D z = y
-  {
-    const Node node = this->Supernode(s);
-    for (int j = 0; j < node.Columns; ++j)
+    SolveRowsOfWidth(factor, width, rows.data());
+    for (Eigen::Index k = 0; k < n; ++k)
     {
-      Y.row(node.First + j) /= node.Values[static_cast<std::ptrdiff_t>(j) * (node.Rows + 1)];
+      X.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used) = Y.row(k).head(used);
     }
-  }
-  for (int s = nsuper - 1; s >= 0; --s) // L^T x = z
-  {
-    const Panel panel(this->Supernode(s));
-    auto Ys = Y.middleRows(panel.First, panel.Diagonal.rows());
-    if (panel.Below.rows() > 0)
-    {
-      RowBlockView G(Scratch(scratch, static_cast<std::size_t>(panel.Below.rows()) * count),
-        panel.Below.rows(), count);
-      for (Eigen::Index i = 0; i < G.rows(); ++i)
-      {
-        G.row(i) = Y.row(panel.BelowRows[i]);
-      }
-      Ys.noalias() -= panel.Below.transpose() * G;
-    }
-    panel.Diagonal.transpose().triangularView<Eigen::UnitUpper>().solveInPlace(Ys);
-  }
-  for (Eigen::Index k = 0; k < n; ++k)
-  {
-    X.row(this->Perm[static_cast<std::size_t>(k)]).segment(first, count) = Y.row(k);
+    done += used;
   }
 }
 } // namespace spectral

@@ -13,8 +13,8 @@
  * factored without pivoting. Without pivoting it is the same factorization as CHOLMOD's
  * simplicial LDL^T, so the pivots D give the inertia (Sylvester's law) of the matrix.
  *
- * Solves take a block of right-hand sides at once; each supernode is then a dense triangular
- * solve and a dense product, so reading the factor is shared by all right-hand sides.
+ * Solves take a block of right-hand sides at once, stored row by row, so that reading the
+ * factor is shared by all of them and every update of a row is a short vector operation.
  *
  * Reference for the structure: T. A. Davis, "Direct Methods for Sparse Linear Systems", SIAM
  * 2006, chapter 4; Y. Chen, T. A. Davis, W. W. Hager, S. Rajamanickam, "Algorithm 887:
