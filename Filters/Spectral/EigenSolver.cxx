@@ -191,6 +191,12 @@ private:
   const SparseMatrix& Mass;
 };
 
+/// Thrown by a band whose shift lies too close to an eigenvalue; holds a better shift.
+struct ShiftTooClose
+{
+  double Suggested;
+};
+
 /// Eigenpairs of one band, sorted ascending.
 struct Band
 {
@@ -297,6 +303,20 @@ DenseMatrix Product(const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C
   return out;
 }
 
+/// W -= B (B^T M W) for a tall n-row B; returns B^T M W.
+DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, const SparseMatrix& M)
+{
+  const DenseMatrix C = TransposeProduct(B, M * W);
+  SubtractProduct(W, B, C);
+  return C;
+}
+
+/// The squared M-norm of every column of W.
+Vector MassNorms(const DenseMatrix& W, const SparseMatrix& M)
+{
+  return W.cwiseProduct(M * W).colwise().sum().transpose();
+}
+
 /**
  * M-orthonormalize the columns of W in place (two passes of SVQB: eigen-decomposition of the
  * Gram matrix) and return R with W_in = W_out R. Directions whose norm fell below `floor`
@@ -352,18 +372,42 @@ DenseMatrix Orthonormalize(DenseMatrix& W, const SparseMatrix& M,
 }
 
 /**
+ * An eigenvalue within a small fraction of the mean gap from the shift makes the norm of
+ * Op = (L - sigma M)^-1 M dwarf the rest of the band; rounding then costs every other pair of
+ * the band up to an order of magnitude of residual. That eigenvalue dominates the first few
+ * Lanczos blocks, so the largest Ritz value of their projection T finds it early.
+ * \throws ShiftTooClose with a shift half a mean gap away from it.
+ */
+void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
+{
+  const DenseMatrix symmetric = 0.5 * (T + T.transpose());
+  const Vector theta = Eigen::SelfAdjointEigenSolver<DenseMatrix>(symmetric, Eigen::EigenvaluesOnly)
+                         .eigenvalues();
+  const double dominant =
+    std::abs(theta[0]) > std::abs(theta[theta.size() - 1]) ? theta[0] : theta[theta.size() - 1];
+  const double nearest = 1.0 / dominant;
+  if (std::abs(nearest) < 0.025 * meanGap)
+  {
+    throw ShiftTooClose{ sigma + nearest - std::copysign(0.5 * meanGap, nearest) };
+  }
+}
+
+/**
  * The nev eigenpairs nearest sigma by block Lanczos on Op = (L - sigma M)^-1 M in the M inner
- * product, with full block reorthogonalization (two passes of classical Gram-Schmidt, matrix-
- * matrix products only) and thick restarts that keep the best Ritz vectors. The projected matrix
+ * product, with full block reorthogonalization (the block recurrence, then classical
+ * Gram-Schmidt against the whole basis, repeated only where it cancels; matrix-matrix products
+ * only) and thick restarts that keep the best Ritz vectors. The projected matrix
  * T = V^T M Op V is assembled from the Gram-Schmidt coefficients. A block of b vectors finds
  * eigenvalues of multiplicity up to b directly. A pair counts as converged when its Ritz estimate
- * is below Tolerance and its exact residual below ResidualTolerance / 20, relative to
- * max(|lambda|, lambdaReference) (lambdaReference <= 0: the band's first non-zero eigenvalue).
- * \throws SolverFailure without convergence.
+ * is below Tolerance and its residual below ResidualTolerance / 20 (relaxed up to / 2 when the
+ * iteration stalls), relative to max(|lambda|, lambdaReference) (lambdaReference <= 0: the
+ * band's first non-zero eigenvalue).
+ * \throws SolverFailure without convergence; ShiftTooClose (meanGap > 0: the spacing of the
+ *         eigenvalues near sigma) when an eigenvalue lies within meanGap / 40 of sigma.
  */
 Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sigma, int nev,
-  int attempt, double lambdaReference, const EigenOptions& options, const Monitor& monitor,
-  EigenResult& stats)
+  int attempt, double lambdaReference, double meanGap, const EigenOptions& options,
+  const Monitor& monitor, EigenResult& stats)
 {
   const Vector inverseMass = (M * Vector::Ones(M.cols())).cwiseInverse();
   Clock::time_point start = Clock::now();
@@ -395,7 +439,14 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
   V.leftCols(b) = W;
   Eigen::Index applied = 0; // columns whose image under Op is in T
   Eigen::Index filled = b;  // columns of V in use
+  // The first block applied after a (re)start: its image couples to every column before it.
+  Eigen::Index recurrenceStart = 0;
 
+  // A pair converges when its residual is below margin * ResidualTolerance: a margin for the
+  // merging of bands and the final check.
+  double margin = 0.05;
+  int mostConverged = -1;
+  int stalled = 0;
   for (int restart = 0; restart <= options.MaxIterations; ++restart)
   {
     while (filled <= maxDim)
@@ -409,11 +460,24 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       start = Clock::now();
       const double reference = W.cwiseAbs2().colwise().sum().maxCoeff();
       const auto basis = V.leftCols(filled);
-      DenseMatrix C = TransposeProduct(basis, M * W);
-      SubtractProduct(W, basis, C);
-      const DenseMatrix C2 = TransposeProduct(basis, M * W);
-      SubtractProduct(W, basis, C2);
-      C += C2;
+      // The block recurrence first: in exact arithmetic Op V_j is M-orthogonal to all blocks
+      // but V_{j-1}, V_j (and, right after a restart, the kept Ritz vectors), so these carry
+      // its large components. One pass against the whole basis then removes what rounding and
+      // the loss of orthogonality of Lanczos left along the others; a further pass only where
+      // that pass cancelled a column by more than 1/sqrt(2) (Daniel, Gragg, Kaufman, Stewart).
+      const Eigen::Index local = applied == recurrenceStart ? 0 : applied - b;
+      DenseMatrix C = DenseMatrix::Zero(filled, b);
+      C.bottomRows(filled - local) = Project(W, V.middleCols(local, filled - local), M);
+      for (int pass = 0; pass < 3; ++pass)
+      {
+        const Vector before = MassNorms(W, M);
+        C += Project(W, basis, M);
+        const Vector after = MassNorms(W, M);
+        if ((after.array() >= 0.5 * before.array()).all())
+        {
+          break;
+        }
+      }
       const DenseMatrix R = Orthonormalize(W, M, basis, 1e-26 * reference, generator);
       T.block(0, applied, filled, b) = C;
       T.block(applied, 0, b, filled) = C.transpose();
@@ -423,6 +487,10 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       applied = filled;
       filled += b;
       stats.Seconds.Orthogonalization += SecondsSince(start);
+      if (restart == 0 && applied == 4 * b && meanGap > 0.0)
+      {
+        CheckShift(T.topLeftCorner(applied, applied), sigma, meanGap);
+      }
     }
     start = Clock::now();
 
@@ -430,7 +498,6 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
     Tk = 0.5 * (Tk + Tk.transpose()).eval();
     Eigen::SelfAdjointEigenSolver<DenseMatrix> ritz(Tk);
     const Vector& theta = ritz.eigenvalues();
-    const DenseMatrix coupling = T.block(applied, 0, b, applied) * ritz.eigenvectors();
     std::vector<Eigen::Index> order(static_cast<std::size_t>(applied));
     for (Eigen::Index i = 0; i < applied; ++i)
     {
@@ -444,13 +511,13 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
     // checks of the caller make sure nothing in between is missed.
     // A Ritz pair (theta, x = V y) leaves Op x - theta x = Q c with Q the next block and
     // c = coupling y, so its residual for the pencil is L x - lambda M x = -(L - sigma M) Q c / theta
-    // with lambda = sigma + 1/theta: exact, and cheap through the Gram matrix of (L - sigma M) Q.
+    // with lambda = sigma + 1/theta: cheap through the Gram matrix of (L - sigma M) Q.
+    const DenseMatrix coupling = T.block(applied, 0, b, applied) * ritz.eigenvectors();
     const DenseMatrix Z = factor.ShiftedMatrix() * V.middleCols(applied, b);
     const DenseMatrix residualGram = Z.transpose() * (inverseMass.asDiagonal() * Z);
     double reference = lambdaReference;
     if (!(reference > 0.0))
     {
-      reference = 0.0;
       double top = 0.0;
       for (int i = 0; i < std::min<int>(nev, static_cast<int>(applied)); ++i)
       {
@@ -465,19 +532,37 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
     }
     const int wanted = std::max(1, (4 * nev) / 5);
     int converged = 0;
-    while (converged < nev)
+    while (converged < std::min<int>(nev, static_cast<int>(applied)))
     {
       const Eigen::Index k = order[static_cast<std::size_t>(converged)];
       const double lambda = sigma + 1.0 / theta[k];
       const double residual =
         std::sqrt(std::max(0.0, coupling.col(k).dot(residualGram * coupling.col(k)))) /
         std::abs(theta[k]);
-      if (coupling.col(k).norm() > options.Tolerance * std::abs(theta[k]) ||
-        residual > 0.05 * options.ResidualTolerance * std::max(std::abs(lambda), reference))
+      if (coupling.col(k).norm() > (margin / 0.05) * options.Tolerance * std::abs(theta[k]) ||
+        residual > margin * options.ResidualTolerance * std::max(std::abs(lambda), reference))
       {
         break;
       }
       ++converged;
+    }
+    // Rounding bounds the attainable residual (it grows with lambda_max / lambda_1, i.e. with
+    // the mesh size): when two restarts bring no new pair, relax the margin, up to half the
+    // tolerance that the caller verifies. A band that still stalls fails, and the caller starts
+    // it afresh with a larger subspace.
+    if (converged > mostConverged)
+    {
+      mostConverged = converged;
+      stalled = 0;
+    }
+    else if (++stalled >= 2)
+    {
+      if (margin >= 0.5)
+      {
+        restart = options.MaxIterations;
+      }
+      margin = std::min(0.5, 2.0 * margin);
+      stalled = 0;
     }
     if (converged >= wanted || restart == options.MaxIterations)
     {
@@ -485,25 +570,53 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       {
         throw SolverFailure("the block Lanczos iteration of the band at shift " + Str(sigma) +
             " converged for " + std::to_string(converged) + " of " + std::to_string(nev) +
-            " eigenpairs in " + std::to_string(options.MaxIterations) +
-            " restarts; raise MaxIterations or loosen Tolerance",
+            " eigenpairs in " + std::to_string(restart) + " restarts",
           converged);
       }
+      // The residual estimate above trusts the Lanczos relation, which rounding in the solves
+      // erodes for pairs far from the shift (by |theta_max / theta|) and over many restarts:
+      // check the true residuals (L - sigma M) x - (lambda - sigma) M x, a sparse product, and
+      // keep the pairs nearest the shift up to the first that fails. Too few left: the caller
+      // starts the band afresh.
       DenseMatrix Y(applied, converged);
-      std::vector<std::pair<double, Eigen::Index>> values;
       for (int i = 0; i < converged; ++i)
       {
-        const Eigen::Index k = order[static_cast<std::size_t>(i)];
-        values.emplace_back(sigma + 1.0 / theta[k], k);
+        Y.col(i) = ritz.eigenvectors().col(order[static_cast<std::size_t>(i)]);
+      }
+      const DenseMatrix X = Product(V.leftCols(applied), Y);
+      const DenseMatrix AX = factor.ShiftedMatrix() * X;
+      const DenseMatrix MX = M * X;
+      int verified = 0;
+      while (verified < converged)
+      {
+        const double lambda = sigma + 1.0 / theta[order[static_cast<std::size_t>(verified)]];
+        const double residual = std::sqrt(
+          (AX.col(verified) - (lambda - sigma) * MX.col(verified)).cwiseAbs2().dot(inverseMass));
+        if (residual > 0.5 * options.ResidualTolerance * std::max(std::abs(lambda), reference))
+        {
+          break;
+        }
+        ++verified;
+      }
+      if (verified < std::max(1, wanted / 2))
+      {
+        throw SolverFailure("the band at shift " + Str(sigma) + " verified " +
+            std::to_string(verified) + " of " + std::to_string(converged) +
+            " converged eigenpairs by their residuals",
+          verified);
+      }
+      std::vector<std::pair<double, Eigen::Index>> values;
+      for (int i = 0; i < verified; ++i)
+      {
+        values.emplace_back(sigma + 1.0 / theta[order[static_cast<std::size_t>(i)]], i);
       }
       std::sort(values.begin(), values.end());
-      Band band{ Vector(converged), DenseMatrix() };
-      for (int i = 0; i < converged; ++i)
+      Band band{ Vector(verified), DenseMatrix(n, verified) };
+      for (int i = 0; i < verified; ++i)
       {
         band.Values[i] = values[static_cast<std::size_t>(i)].first;
-        Y.col(i) = ritz.eigenvectors().col(values[static_cast<std::size_t>(i)].second);
+        band.Vectors.col(i) = X.col(values[static_cast<std::size_t>(i)].second);
       }
-      band.Vectors = Product(V.leftCols(applied), Y);
       stats.Seconds.RayleighRitz += SecondsSince(start);
       return band;
     }
@@ -530,6 +643,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
     T.block(0, keep, keep, b) = link.transpose();
     applied = keep;
     filled = keep + b;
+    recurrenceStart = keep;
     stats.Seconds.RayleighRitz += SecondsSince(start);
   }
   throw SolverFailure("the block Lanczos iteration did not converge");
@@ -659,6 +773,7 @@ EigenResult BandEigenpairs(
   accepted.Vectors.resize(n, m + 2 * nev);
   int attempt = 0;
   int gaps = 0;
+  double meanGap = 0.0; // between eigenvalues, from the last band; 0 before the first
 
   // After an inertia count disagrees: forget what is not proven and retry with more effort.
   auto rollBack = [&](const std::string& what) {
@@ -736,7 +851,30 @@ EigenResult BandEigenpairs(
     }
     else
     {
-      band = RunBlockBand(factor, M, sigma, nev, attempt, reference, options, monitor, result);
+      try
+      {
+        band = RunBlockBand(
+          factor, M, sigma, nev, attempt, reference, meanGap, options, monitor, result);
+      }
+      catch (const SolverFailure&)
+      {
+        // The band stalled: once more from another start vector with a larger subspace.
+        if (++attempt > 3)
+        {
+          throw;
+        }
+        continue;
+      }
+      catch (const ShiftTooClose& moved)
+      {
+        sigma = moved.Suggested;
+        if (++gaps > 8)
+        {
+          throw SolverFailure("no shift near " + Str(sigma) + " is far enough from an eigenvalue",
+            accepted.CountBelow(proven));
+        }
+        continue;
+      }
     }
     ++result.Bands;
 
@@ -809,6 +947,7 @@ EigenResult BandEigenpairs(
     // Weyl's law makes the eigenvalue density nearly constant: size the next band from this one.
     const double spread = band.Values[band.Values.size() - 1] - std::max(0.0, band.Values[0]);
     const double density = static_cast<double>(band.Values.size()) / std::max(spread, slack);
+    meanGap = 1.0 / density;
     sigma = complete + 0.75 * static_cast<double>(band.Values.size()) / (2.0 * density);
   }
 
