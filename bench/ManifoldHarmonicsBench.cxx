@@ -199,6 +199,7 @@ int RunCase(const Settings& settings, int n, int m)
   catch (const std::exception& e)
   {
     std::printf("%8d %6d  failed: %s\n", static_cast<int>(L.rows()), m, e.what());
+    std::fflush(stdout);
     return 1;
   }
   const double total = Since(start);
