@@ -683,8 +683,8 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
   Y.leftCols(fromAccepted) = accepted.Vectors.middleCols(first, fromAccepted);
   Y.rightCols(band.Values.size()) = band.Vectors;
 
-  DenseMatrix G = Y.transpose() * (M * Y);
-  DenseMatrix S = Y.transpose() * (L * Y);
+  DenseMatrix G = TransposeProduct(Y, M * Y);
+  DenseMatrix S = TransposeProduct(Y, L * Y);
   G = 0.5 * (G + G.transpose()).eval();
   S = 0.5 * (S + S.transpose()).eval();
 
@@ -707,7 +707,7 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
   DenseMatrix T = C1.transpose() * S * C1;
   T = 0.5 * (T + T.transpose()).eval();
   Eigen::SelfAdjointEigenSolver<DenseMatrix> ritz(T);
-  const DenseMatrix Z = Y * (C1 * ritz.eigenvectors());
+  const DenseMatrix Z = Product(Y, C1 * ritz.eigenvectors());
 
   const Eigen::Index total = first + Z.cols();
   if (accepted.Vectors.cols() < total)
