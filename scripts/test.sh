@@ -78,9 +78,11 @@ if [ "${SKIP_SANITIZE:-0}" != 1 ]; then
   if [ "${fuzz_seconds}" -gt 0 ]; then
     echo "=== Fuzzing the core for ${fuzz_seconds} s"
     mkdir -p "${sanitize_dir}/fuzz-corpus" "${sanitize_dir}/fuzz-findings"
+    # Testing/Core/fuzz-regressions: inputs that once failed, run first as part of the corpus.
     (cd "${sanitize_dir}/fuzz-findings" && OPENBLAS_NUM_THREADS=1 \
       "${sanitize_dir}/FuzzCore" -seed=1 -max_total_time="${fuzz_seconds}" -max_len=512 \
-      -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 "${sanitize_dir}/fuzz-corpus") || status=1
+      -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 "${sanitize_dir}/fuzz-corpus" \
+      "${source_dir}/Testing/Core/fuzz-regressions") || status=1
   fi
   echo "=== Sanitizer stage took $((SECONDS - stage_start)) s"
 fi

@@ -621,9 +621,13 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       return band;
     }
 
-    // Thick restart: keep the best Ritz vectors and the last block.
-    const Eigen::Index keep = std::min<Eigen::Index>(
-      std::max<Eigen::Index>(nev + b, (applied + nev) / 2), maxDim - 2 * b);
+    // Thick restart: keep the best Ritz vectors and the last block, and leave room for two
+    // more blocks (one where the subspace is too small for two: maxDim >= nev + b).
+    const Eigen::Index room =
+      std::max<Eigen::Index>(maxDim - 2 * b, std::min<Eigen::Index>(nev, maxDim - b));
+    const Eigen::Index keep = std::max<Eigen::Index>(1,
+      std::min<Eigen::Index>(
+        { std::max<Eigen::Index>(nev + b, (applied + nev) / 2), room, applied }));
     DenseMatrix Y(applied, keep);
     Vector kept(keep);
     for (Eigen::Index i = 0; i < keep; ++i)
