@@ -30,103 +30,9 @@ double* Scratch(std::vector<double>& buffer, std::size_t size)
   return buffer.data();
 }
 
-/// The arrays of a factor that the solves read.
-struct FactorView
-{
-  int Supernodes;
-  const int* First;
-  const int* RowStart;
-  const int* RowIndex;
-  const std::size_t* ValueStart;
-  const double* Values;
-};
-
 /// Right-hand sides solved together by SolveRows: the width of one row of its block, a multiple
 /// of 4 (one or more SIMD registers); fewer right-hand sides are padded with zeros.
 constexpr int MaxWidth = 16;
-
-/**
- * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
- * the k-th entries of all W right-hand sides next to each other, and W is known at compile time,
- * so that every update of a row is a few vector instructions. Supernodes of a surface mesh are
- * mostly a few columns wide, too small for dense kernels to pay off: the forward solve goes
- * column by column (each column updates the rows below it), the backward solve row by row of
- * L^T (a dot product per column).
- */
-template <int W>
-void SolveRows(const FactorView& f, double* Y)
-{
-  using Row = Eigen::Matrix<double, W, 1>;
-  using RowView = Eigen::Map<Row>;
-  using ConstRowView = Eigen::Map<const Row>;
-  for (int s = 0; s < f.Supernodes; ++s) // L y = P b
-  {
-    const int first = f.First[s];
-    const int columns = f.First[s + 1] - first;
-    const int count = f.RowStart[s + 1] - f.RowStart[s];
-    const int* rows = f.RowIndex + f.RowStart[s];
-    const double* values = f.Values + f.ValueStart[s];
-    for (int j = 0; j < columns; ++j)
-    {
-      const Row y = ConstRowView(Y + static_cast<std::size_t>(first + j) * W);
-      const double* column = values + static_cast<std::size_t>(j) * count;
-      for (int i = j + 1; i < count; ++i)
-      {
-        RowView(Y + static_cast<std::size_t>(rows[i]) * W) -= column[i] * y;
-      }
-    }
-  }
-  for (int s = 0; s < f.Supernodes; ++s) // D z = y
-  {
-    const int first = f.First[s];
-    const int count = f.RowStart[s + 1] - f.RowStart[s];
-    const double* values = f.Values + f.ValueStart[s];
-    for (int j = 0; j < f.First[s + 1] - first; ++j)
-    {
-      RowView(Y + static_cast<std::size_t>(first + j) * W) /=
-        values[static_cast<std::size_t>(j) * (count + 1)];
-    }
-  }
-  for (int s = f.Supernodes - 1; s >= 0; --s) // L^T x = z
-  {
-    const int first = f.First[s];
-    const int columns = f.First[s + 1] - first;
-    const int count = f.RowStart[s + 1] - f.RowStart[s];
-    const int* rows = f.RowIndex + f.RowStart[s];
-    const double* values = f.Values + f.ValueStart[s];
-    for (int j = columns - 1; j >= 0; --j)
-    {
-      RowView target(Y + static_cast<std::size_t>(first + j) * W);
-      Row x = target;
-      const double* column = values + static_cast<std::size_t>(j) * count;
-      for (int i = j + 1; i < count; ++i)
-      {
-        x -= column[i] * ConstRowView(Y + static_cast<std::size_t>(rows[i]) * W);
-      }
-      target = x;
-    }
-  }
-}
-
-/// SolveRows for a width known only at run time: 4, 8, 12 or 16.
-void SolveRowsOfWidth(const FactorView& f, int width, double* Y)
-{
-  switch (width)
-  {
-    case 4:
-      SolveRows<4>(f, Y);
-      break;
-    case 8:
-      SolveRows<8>(f, Y);
-      break;
-    case 12:
-      SolveRows<12>(f, Y);
-      break;
-    default:
-      SolveRows<16>(f, Y);
-      break;
-  }
-}
 
 /// CHOLMOD's workspace for one analysis, released on every path out.
 struct CholmodSession
@@ -379,11 +285,84 @@ DenseMatrix SupernodalLDLT::Solve(const DenseMatrix& B) const
 }
 
 //------------------------------------------------------------------------------
+/**
+ * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
+ * the k-th entries of all W right-hand sides next to each other, and W is known at compile time,
+ * so that every update of a row is a few vector instructions. Supernodes of a surface mesh are
+ * mostly a few columns wide, too small for dense kernels to pay off: the forward solve goes
+ * column by column (each column updates the rows below it), the backward solve row by row of
+ * L^T (a dot product per column).
+ */
+template<int W>
+void SupernodalLDLT::SolveRows(double* Y) const
+{
+  using Row = Eigen::Matrix<double, W, 1>;
+  using RowView = Eigen::Map<Row>;
+  using ConstRowView = Eigen::Map<const Row>;
+  const int nsuper = this->Supernodes();
+  for (int s = 0; s < nsuper; ++s) // L y = P b
+  {
+    const Node node = this->Supernode(s);
+    for (int j = 0; j < node.Columns; ++j)
+    {
+      const Row y = ConstRowView(Y + static_cast<std::size_t>(node.First + j) * W);
+      const double* column = node.Values + static_cast<std::size_t>(j) * node.Rows;
+      for (int i = j + 1; i < node.Rows; ++i)
+      {
+        RowView(Y + static_cast<std::size_t>(node.RowIndex[i]) * W) -= column[i] * y;
+      }
+    }
+  }
+  for (int s = 0; s < nsuper; ++s) // D z = y
+  {
+    const Node node = this->Supernode(s);
+    for (int j = 0; j < node.Columns; ++j)
+    {
+      RowView(Y + static_cast<std::size_t>(node.First + j) * W) /=
+        node.Values[static_cast<std::size_t>(j) * (node.Rows + 1)];
+    }
+  }
+  for (int s = nsuper - 1; s >= 0; --s) // L^T x = z
+  {
+    const Node node = this->Supernode(s);
+    for (int j = node.Columns - 1; j >= 0; --j)
+    {
+      RowView target(Y + static_cast<std::size_t>(node.First + j) * W);
+      Row x = target;
+      const double* column = node.Values + static_cast<std::size_t>(j) * node.Rows;
+      for (int i = j + 1; i < node.Rows; ++i)
+      {
+        x -= column[i] * ConstRowView(Y + static_cast<std::size_t>(node.RowIndex[i]) * W);
+      }
+      target = x;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void SupernodalLDLT::SolveRowsOfWidth(int width, double* Y) const
+{
+  switch (width)
+  {
+    case 4:
+      this->SolveRows<4>(Y);
+      break;
+    case 8:
+      this->SolveRows<8>(Y);
+      break;
+    case 12:
+      this->SolveRows<12>(Y);
+      break;
+    default:
+      this->SolveRows<16>(Y);
+      break;
+  }
+}
+
+//------------------------------------------------------------------------------
 void SupernodalLDLT::SolveColumns(
   const DenseMatrix& B, DenseMatrix& X, Eigen::Index first, Eigen::Index count) const
 {
-  const FactorView factor{ this->Supernodes(), this->First.data(), this->RowStart.data(),
-    this->RowIndex.data(), this->ValueStart.data(), this->Values.data() };
   const Eigen::Index n = this->Size;
   std::vector<double> rows;
   for (Eigen::Index done = 0; done < count;)
@@ -397,7 +376,7 @@ void SupernodalLDLT::SolveColumns(
     {
       Y.row(k).head(used) = B.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used);
     }
-    SolveRowsOfWidth(factor, width, rows.data());
+    this->SolveRowsOfWidth(width, rows.data());
     for (Eigen::Index k = 0; k < n; ++k)
     {
       X.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used) = Y.row(k).head(used);

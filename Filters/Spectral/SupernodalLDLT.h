@@ -82,6 +82,16 @@ private:
   void SolveColumns(const DenseMatrix& B, DenseMatrix& X, Eigen::Index first,
     Eigen::Index count) const;
 
+  /**
+   * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
+   * the k-th entries of all W right-hand sides next to each other (defined in the .cxx).
+   */
+  template<int W>
+  void SolveRows(double* Y) const;
+
+  /// SolveRows for a width known only at run time: 4, 8, 12 or 16.
+  void SolveRowsOfWidth(int width, double* Y) const;
+
   Eigen::Index Size = 0;
   /// Perm[k]: the row of A that becomes row k of P A P^T; Inverse is its inverse.
   std::vector<int> Perm;
