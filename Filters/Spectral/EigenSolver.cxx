@@ -443,10 +443,12 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
   Eigen::Index recurrenceStart = 0;
 
   // A pair converges when its residual is below margin * ResidualTolerance: a margin for the
-  // merging of bands and the final check.
-  double margin = 0.05;
+  // merging of bands and the final check. The Ritz estimate's Tolerance is relaxed with it.
+  const double initialMargin = 0.05;
+  double margin = initialMargin;
   int mostConverged = -1;
   int stalled = 0;
+  bool givenUp = false;
   for (int restart = 0; restart <= options.MaxIterations; ++restart)
   {
     while (filled <= maxDim)
@@ -468,15 +470,16 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       const Eigen::Index local = applied == recurrenceStart ? 0 : applied - b;
       DenseMatrix C = DenseMatrix::Zero(filled, b);
       C.bottomRows(filled - local) = Project(W, V.middleCols(local, filled - local), M);
+      Vector before = MassNorms(W, M);
       for (int pass = 0; pass < 3; ++pass)
       {
-        const Vector before = MassNorms(W, M);
         C += Project(W, basis, M);
         const Vector after = MassNorms(W, M);
         if ((after.array() >= 0.5 * before.array()).all())
         {
           break;
         }
+        before = after;
       }
       const DenseMatrix R = Orthonormalize(W, M, basis, 1e-26 * reference, generator);
       T.block(0, applied, filled, b) = C;
@@ -539,7 +542,8 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       const double residual =
         std::sqrt(std::max(0.0, coupling.col(k).dot(residualGram * coupling.col(k)))) /
         std::abs(theta[k]);
-      if (coupling.col(k).norm() > (margin / 0.05) * options.Tolerance * std::abs(theta[k]) ||
+      if (coupling.col(k).norm() >
+          (margin / initialMargin) * options.Tolerance * std::abs(theta[k]) ||
         residual > margin * options.ResidualTolerance * std::max(std::abs(lambda), reference))
       {
         break;
@@ -557,14 +561,11 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
     }
     else if (++stalled >= 2)
     {
-      if (margin >= 0.5)
-      {
-        restart = options.MaxIterations;
-      }
+      givenUp = margin >= 0.5;
       margin = std::min(0.5, 2.0 * margin);
       stalled = 0;
     }
-    if (converged >= wanted || restart == options.MaxIterations)
+    if (converged >= wanted || givenUp || restart == options.MaxIterations)
     {
       if (converged < wanted)
       {
