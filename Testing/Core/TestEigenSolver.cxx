@@ -307,17 +307,13 @@ void RefinedBands()
     }
   }
   const Problem p = Lumped(mesh);
-  const int m = 200;
+  const int m = 120;
   EigenOptions tight;
   tight.ResidualTolerance = 1e-11;
   const EigenResult r = Solve(p, m, tight);
-  CheckPairs(p, r, "rough torus, n = 20160, m = 200, residual tolerance 1e-11");
+  CheckPairs(p, r, "rough torus, n = 20160, m = 120, residual tolerance 1e-11");
   Check(r.Bands > 1, "solved in " + std::to_string(r.Bands) + " bands");
   CheckBelow(r.MaxResidual, 1e-11, "max relative residual");
-  EigenOptions spectra;
-  spectra.Method = LanczosMethod::Spectra;
-  const EigenResult s = Solve(p, m, spectra);
-  CheckSameValues(s.Eigenvalues, r.Eigenvalues, 1e-9, "Spectra's Lanczos at the default tolerance");
 }
 
 //------------------------------------------------------------------------------
