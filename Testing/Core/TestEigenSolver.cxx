@@ -3,6 +3,7 @@
 // Properties of the generalized eigensolver (Filters/Spectral/EigenSolver.h) on meshes with a
 // known spectrum: the unit sphere (l(l+1), multiplicity 2l+1), the free a x b rectangle
 // (pi^2 (i^2/a^2 + j^2/b^2)), and disjoint components (one zero eigenvalue each).
+#include "BenchMeshes.h"
 #include "Checks.h"
 #include "EigenSolver.h"
 #include "Meshes.h"
@@ -11,7 +12,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -288,24 +288,11 @@ void DisjointComponents()
 //------------------------------------------------------------------------------
 void RefinedBands()
 {
-  // A rough torus: every point moved along the tube's normal by up to 20% of the tube radius
-  // (fixed seed). The Lanczos iteration alone leaves residuals above 1e-11 on it (without the
-  // refinement of the bands' vectors the first band verifies none of its pairs at this
-  // tolerance); with the refinement every pair must meet it.
-  TriangleMesh mesh = Torus(1.0, 0.35, 240, 84);
-  std::mt19937 generator(11u);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (int i = 0; i < 240; ++i)
-  {
-    const double u = 2.0 * Pi * i / 240;
-    const Eigen::RowVector3d center(std::cos(u), std::sin(u), 0.0);
-    for (int j = 0; j < 84; ++j)
-    {
-      const Eigen::Index row = static_cast<Eigen::Index>(i) * 84 + j;
-      const Eigen::RowVector3d normal = (mesh.Vertices.row(row) - center).normalized();
-      mesh.Vertices.row(row) += 0.07 * uniform(generator) * normal;
-    }
-  }
+  // A rough torus (the benchmark's): every point moved along the tube's normal by up to 20% of
+  // the tube radius (fixed seed). The Lanczos iteration alone leaves residuals above 1e-11 on
+  // it (without the refinement of the bands' vectors the first band verifies none of its pairs
+  // at this tolerance); with the refinement every pair must meet it.
+  const TriangleMesh mesh = bench::NoisyTorus(240, 84, 0.2);
   const Problem p = Lumped(mesh);
   const int m = 120;
   EigenOptions tight;
