@@ -91,7 +91,8 @@ struct EigenResult
   int Bands = 0;
   /// Number of LDL^T factorizations (bands, retries and the final inertia check).
   int Factorizations = 0;
-  /// Number of vectors to which (L - sigma M)^-1 M was applied.
+  /// Number of vectors solved with a factorization of L - sigma M: applications of
+  /// (L - sigma M)^-1 M, and the refinement of bands whose residuals failed.
   long long OperatorApplications = 0;
   EigenTimings Seconds;
 };
