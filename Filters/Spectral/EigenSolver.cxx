@@ -859,6 +859,7 @@ EigenResult BandEigenpairs(
   accepted.Vectors.resize(n, m + 2 * nev);
   int attempt = 0;
   int gaps = 0;
+  int shortBands = 0;   // bands in a row that did not reach down to `complete`
   double meanGap = 0.0; // between eigenvalues, from the last band; 0 before the first
 
   // After an inertia count disagrees: forget what is not proven and retry with more effort.
@@ -973,7 +974,10 @@ EigenResult BandEigenpairs(
     if (low >= complete && std::isfinite(complete))
     {
       // The band does not reach down to what is known: move the shift closer and try again.
-      sigma = complete + 0.5 * (sigma - complete);
+      // Twice in a row, a cluster of eigenvalues at the seam holds the band's lower edge
+      // (eigenvalues at the edge of a band are trusted by neither band): a shift below the
+      // seam makes the band reach across it.
+      sigma = ++shortBands < 2 ? complete + 0.5 * (sigma - complete) : complete - 0.5 * meanGap;
       if (++gaps > 8)
       {
         throw SolverFailure(
@@ -1025,6 +1029,7 @@ EigenResult BandEigenpairs(
       }
     }
     gaps = 0;
+    shortBands = 0;
     Merge(accepted, trusted, low - 0.25 * radius, L, M);
     complete = high;
     result.Seconds.RayleighRitz += SecondsSince(start);
