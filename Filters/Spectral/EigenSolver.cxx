@@ -197,6 +197,28 @@ struct ShiftTooClose
   double Suggested;
 };
 
+/**
+ * The mass matrix of the pencil in the products of the block iteration. A positive diagonal mass
+ * (the lumped one) is scaled away before the iteration (SmallestEigenpairs): the pencil becomes
+ * (D^-1/2 L D^-1/2, I), and Identity skips every product with it.
+ */
+struct MassMatrix
+{
+  const SparseMatrix& Matrix;
+  bool Identity;
+
+  /// M W in `out`; W itself (no copy) for the identity.
+  const DenseMatrix& Times(const DenseMatrix& W, DenseMatrix& out) const
+  {
+    if (this->Identity)
+    {
+      return W;
+    }
+    out.noalias() = this->Matrix * W;
+    return out;
+  }
+};
+
 /// Eigenpairs of one band, sorted ascending.
 struct Band
 {
@@ -304,17 +326,22 @@ DenseMatrix Product(const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C
 }
 
 /// W -= B (B^T M W) for a tall n-row B; returns B^T M W.
-DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, const SparseMatrix& M)
+DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, const MassMatrix& M)
 {
-  const DenseMatrix C = TransposeProduct(B, M * W);
+  DenseMatrix scratch;
+  const DenseMatrix C = TransposeProduct(B, M.Times(W, scratch));
   SubtractProduct(W, B, C);
   return C;
 }
 
 /// The squared M-norm of every column of W.
-Vector MassNorms(const DenseMatrix& W, const SparseMatrix& M)
+Vector MassNorms(const DenseMatrix& W, const MassMatrix& M)
 {
-  return W.cwiseProduct(M * W).colwise().sum().transpose();
+  if (M.Identity)
+  {
+    return W.colwise().squaredNorm().transpose();
+  }
+  return W.cwiseProduct(M.Matrix * W).colwise().sum().transpose();
 }
 
 /**
@@ -323,14 +350,18 @@ Vector MassNorms(const DenseMatrix& W, const SparseMatrix& M)
  * (the block is nearly inside the span of Basis) are replaced by random vectors M-orthogonal to
  * Basis and to the other columns; their rows of R are zero.
  */
-DenseMatrix Orthonormalize(DenseMatrix& W, const SparseMatrix& M,
-  const Eigen::Ref<const DenseMatrix>& Basis, double floor, std::mt19937& generator)
+DenseMatrix Orthonormalize(DenseMatrix& W,
+  const MassMatrix& M,
+  const Eigen::Ref<const DenseMatrix>& Basis,
+  double floor,
+  std::mt19937& generator)
 {
   const Eigen::Index b = W.cols();
   DenseMatrix R = DenseMatrix::Identity(b, b);
   for (int pass = 0; pass < 2; ++pass)
   {
-    DenseMatrix G = W.transpose() * (M * W);
+    DenseMatrix scratch;
+    DenseMatrix G = TransposeProduct(W, M.Times(W, scratch));
     G = 0.5 * (G + G.transpose()).eval();
     Eigen::SelfAdjointEigenSolver<DenseMatrix> gram(G);
     const Vector& g = gram.eigenvalues();
@@ -362,10 +393,10 @@ DenseMatrix Orthonormalize(DenseMatrix& W, const SparseMatrix& M,
       }
       for (int again = 0; again < 2; ++again)
       {
-        v -= Basis * (Basis.transpose() * (M * v));
-        v -= W * (W.transpose() * (M * v));
+        v -= Basis * (Basis.transpose() * (M.Matrix * v));
+        v -= W * (W.transpose() * (M.Matrix * v));
       }
-      W.col(i) = v / std::sqrt(v.dot(M * v));
+      W.col(i) = v / std::sqrt(v.dot(M.Matrix * v));
     }
   }
   return R;
@@ -471,13 +502,20 @@ void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
  * \throws SolverFailure without convergence; ShiftTooClose (meanGap > 0: the spacing of the
  *         eigenvalues near sigma) when an eigenvalue lies within meanGap / 40 of sigma.
  */
-Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sigma, int nev,
-  int attempt, double lambdaReference, double meanGap, const EigenOptions& options,
-  const Monitor& monitor, EigenResult& stats)
+Band RunBlockBand(const ShiftedFactor& factor,
+  const MassMatrix& M,
+  double sigma,
+  int nev,
+  int attempt,
+  double lambdaReference,
+  double meanGap,
+  const EigenOptions& options,
+  const Monitor& monitor,
+  EigenResult& stats)
 {
-  const Vector inverseMass = (M * Vector::Ones(M.cols())).cwiseInverse();
+  const Vector inverseMass = (M.Matrix * Vector::Ones(M.Matrix.cols())).cwiseInverse();
   Clock::time_point start = Clock::now();
-  const Eigen::Index n = M.rows();
+  const Eigen::Index n = M.Matrix.rows();
   // Small blocks raise the polynomial degree per application (faster convergence); too small
   // blocks make the block solves and products slow. nev / 8 measured best for nev ~ 100.
   const Eigen::Index b = std::min<Eigen::Index>(std::max(8, std::min(16, nev / 8)), n / 4 + 1);
@@ -522,7 +560,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       monitor.ThrowIfCancelled();
       start = Clock::now();
       const auto block = V.middleCols(applied, b);
-      W = factor.SolveBlock(M * block);
+      W = M.Identity ? factor.SolveBlock(block) : factor.SolveBlock(M.Matrix * block);
       stats.OperatorApplications += b;
       stats.Seconds.Solve += SecondsSince(start);
       start = Clock::now();
@@ -647,7 +685,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
       }
       DenseMatrix X = Product(V.leftCols(applied), Y);
       DenseMatrix AX = factor.ShiftedMatrix() * X;
-      DenseMatrix MX = M * X;
+      DenseMatrix MX = M.Identity ? X : DenseMatrix(M.Matrix * X);
       Vector shifted = RayleighRitz(X, AX, MX);
       // The residual estimate above trusts the Lanczos relation, that is, exact solves: check
       // the true residuals (L - sigma M) x - (lambda - sigma) M x, a sparse product, and keep
@@ -674,7 +712,7 @@ Band RunBlockBand(const ShiftedFactor& factor, const SparseMatrix& M, double sig
         stats.Seconds.Solve += SecondsSince(start);
         start = Clock::now();
         AX = factor.ShiftedMatrix() * X;
-        MX = M * X;
+        MX = M.Identity ? X : DenseMatrix(M.Matrix * X);
         shifted = RayleighRitz(X, AX, MX);
         verified = Verify(
           AX, MX, shifted, inverseMass, sigma, reference, 0.5 * options.ResidualTolerance, nearest);
@@ -755,8 +793,11 @@ struct Accepted
  * Rayleigh-Ritz step on the rank-revealed joint span replaces them, so a direction found by both
  * bands is kept once, and a multiple eigenvalue split by the seam is kept whole.
  */
-void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseMatrix& L,
-  const SparseMatrix& M)
+void Merge(Accepted& accepted,
+  const Band& band,
+  double windowLow,
+  const SparseMatrix& L,
+  const MassMatrix& M)
 {
   const int first = accepted.CountBelow(windowLow);
   const int fromAccepted = accepted.Count() - first;
@@ -769,7 +810,8 @@ void Merge(Accepted& accepted, const Band& band, double windowLow, const SparseM
   Y.leftCols(fromAccepted) = accepted.Vectors.middleCols(first, fromAccepted);
   Y.rightCols(band.Values.size()) = band.Vectors;
 
-  DenseMatrix G = TransposeProduct(Y, M * Y);
+  DenseMatrix scratch;
+  DenseMatrix G = TransposeProduct(Y, M.Times(Y, scratch));
   DenseMatrix S = TransposeProduct(Y, L * Y);
   G = 0.5 * (G + G.transpose()).eval();
   S = 0.5 * (S + S.transpose()).eval();
@@ -825,9 +867,16 @@ EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int m)
   return result;
 }
 
-/// The band-by-band shift-invert Lanczos iteration (see the file documentation).
-EigenResult BandEigenpairs(
-  const SparseMatrix& L, const SparseMatrix& M, const EigenOptions& options, const Monitor& monitor)
+/**
+ * The band-by-band shift-invert Lanczos iteration (see the file documentation) on the pencil
+ * (L, M); `area` is the surface area (the sum of the entries of the mass matrix before any
+ * scaling).
+ */
+EigenResult BandEigenpairs(const SparseMatrix& L,
+  const MassMatrix& M,
+  double area,
+  const EigenOptions& options,
+  const Monitor& monitor)
 {
   const Eigen::Index n = L.rows();
   const int m = options.NumberOfEigenpairs;
@@ -836,17 +885,16 @@ EigenResult BandEigenpairs(
 
   EigenResult result;
   Clock::time_point start = Clock::now();
-  ShiftedFactor factor(L, M, options.Factorization);
+  ShiftedFactor factor(L, M.Matrix, options.Factorization);
   result.Seconds.Factorization += SecondsSince(start);
   const ShiftInvertOp op(factor, monitor, n);
-  const MassOp mass(M);
+  const MassOp mass(M.Matrix);
 
   // A shift below zero keeps L - sigma M positive definite for the first band. Too near zero it
   // would make the null space dominate the operator by orders of magnitude and cost accuracy
   // elsewhere; 1 / area is below the first non-zero eigenvalue of most shapes (8 pi / area on
   // a sphere) and keeps the two of similar size.
-  const double area = M.sum();
-  const double scale = L.diagonal().sum() / area;
+  const double scale = L.diagonal().sum() / M.Matrix.diagonal().sum();
   const double firstShift = -1.0 / area;
   double sigma = firstShift;
   // Every eigenvalue below `proven` is accepted: an inertia count says so. The bands claim the
@@ -1049,6 +1097,48 @@ EigenResult BandEigenpairs(
   return result;
 }
 
+/// Whether M is diagonal with positive finite entries (a lumped mass).
+bool IsPositiveDiagonal(const SparseMatrix& M)
+{
+  Eigen::Index diagonal = 0;
+  for (Eigen::Index j = 0; j < M.outerSize(); ++j)
+  {
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+    {
+      if (it.row() != it.col())
+      {
+        if (it.value() != 0.0)
+        {
+          return false;
+        }
+      }
+      else if (it.value() > 0.0 && std::isfinite(it.value()))
+      {
+        ++diagonal;
+      }
+      else
+      {
+        return false;
+      }
+    }
+  }
+  return diagonal == M.rows();
+}
+
+/// Phi <- diag(scaling) Phi, a row range per thread.
+void ScaleRows(DenseMatrix& Phi, const Vector& scaling)
+{
+  ForEachRowRange(Phi.rows(),
+    RowParts(Phi.rows()),
+    [&](int, Eigen::Index first, Eigen::Index count)
+    {
+      for (Eigen::Index k = 0; k < Phi.cols(); ++k)
+      {
+        Phi.col(k).segment(first, count).array() *= scaling.segment(first, count).array();
+      }
+    });
+}
+
 /// Make the entry of largest magnitude of every column positive.
 void NormalizeSigns(DenseMatrix& Phi)
 {
@@ -1095,7 +1185,25 @@ EigenResult SmallestEigenpairs(
   }
   else
   {
-    result = BandEigenpairs(L, M, options, monitor);
+    const double area = M.sum();
+    Vector scaling;
+    if (IsPositiveDiagonal(M))
+    {
+      // Q h = lambda D h with a diagonal D is the standard problem S y = lambda y with
+      // S = D^-1/2 Q D^-1/2 and y = D^1/2 h: the same eigenvalues, the same inertia of every
+      // shifted matrix (a congruence), and the D inner product of the iteration becomes the
+      // Euclidean one, which saves a sparse product with D for every product of the iteration.
+      scaling = M.diagonal().cwiseSqrt().cwiseInverse();
+      const SparseMatrix S = scaling.asDiagonal() * L * scaling.asDiagonal();
+      SparseMatrix identity(n, n);
+      identity.setIdentity();
+      result = BandEigenpairs(S, MassMatrix{ identity, true }, area, options, monitor);
+      ScaleRows(result.Eigenvectors, scaling);
+    }
+    else
+    {
+      result = BandEigenpairs(L, MassMatrix{ M, false }, area, options, monitor);
+    }
   }
   NormalizeSigns(result.Eigenvectors);
 

@@ -12,6 +12,9 @@
  * vectors of both bands are merged by a Rayleigh-Ritz step on their joint span, so membership is
  * decided by M-orthogonality (rank), never by comparing eigenvalues. Sylvester's law of inertia
  * (the negative pivots of each LDL^T) proves that no eigenvalue below each shift was lost.
+ * A diagonal M (the lumped mass) is scaled away first: the iteration runs on the standard
+ * problem D^-1/2 L D^-1/2 y = lambda y, with y = D^1/2 h, where the inner product needs no
+ * product with M.
  *
  * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestEigenSolver.cxx.
  */
