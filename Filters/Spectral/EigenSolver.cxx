@@ -654,10 +654,26 @@ Band RunBlockBand(const ShiftedFactor& factor,
       }
       ++converged;
     }
-    // Rounding bounds the attainable residual (it grows with lambda_max / lambda_1, i.e. with
-    // the mesh size): when two restarts bring no new pair, relax the margin, up to half the
+    // The pairs that have converged for the operator the iteration applies (by their Ritz
+    // estimates alone).
+    int settled = 0;
+    while (settled < std::min<int>(nev, static_cast<int>(applied)))
+    {
+      const Eigen::Index k = order[static_cast<std::size_t>(settled)];
+      if (coupling.col(k).norm() >
+        (margin / initialMargin) * options.Tolerance * std::abs(theta[k]))
+      {
+        break;
+      }
+      ++settled;
+    }
+    // When two restarts bring no new pair while enough have settled, the true residuals are
+    // held up by the solves' backward error (see the refinement below): refine those pairs
+    // rather than iterate on. Otherwise rounding bounds the attainable residual (it grows with
+    // lambda_max / lambda_1, i.e. with the mesh size): relax the margin, up to half the
     // tolerance that the caller verifies. A band that still stalls fails, and the caller starts
     // it afresh with a larger subspace.
+    bool refine = false;
     if (converged > mostConverged)
     {
       mostConverged = converged;
@@ -665,12 +681,14 @@ Band RunBlockBand(const ShiftedFactor& factor,
     }
     else if (++stalled >= 2)
     {
+      refine = settled >= wanted;
       givenUp = margin >= 0.5;
       margin = std::min(0.5, 2.0 * margin);
       stalled = 0;
     }
-    if (converged >= wanted || givenUp || restart == options.MaxIterations)
+    if (converged >= wanted || refine || givenUp || restart == options.MaxIterations)
     {
+      converged = refine ? std::max(converged, settled) : converged;
       if (converged < wanted)
       {
         throw SolverFailure("the block Lanczos iteration of the band at shift " + Str(sigma) +
