@@ -552,6 +552,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
   double margin = initialMargin;
   int mostConverged = -1;
   int stalled = 0;
+  int settledRestarts = 0; // restarts in a row at which at least `wanted` pairs had settled
   bool givenUp = false;
   for (int restart = 0; restart <= options.MaxIterations; ++restart)
   {
@@ -667,13 +668,15 @@ Band RunBlockBand(const ShiftedFactor& factor,
       }
       ++settled;
     }
-    // When two restarts bring no new pair while enough have settled, the true residuals are
-    // held up by the solves' backward error (see the refinement below): refine those pairs
-    // rather than iterate on. Otherwise rounding bounds the attainable residual (it grows with
-    // lambda_max / lambda_1, i.e. with the mesh size): relax the margin, up to half the
-    // tolerance that the caller verifies. A band that still stalls fails, and the caller starts
-    // it afresh with a larger subspace.
-    bool refine = false;
+    // When enough pairs have settled at two restarts in a row but too few pass their residual
+    // test, the true residuals are held up by the solves' backward error (see the refinement
+    // below): refine those pairs rather than iterate on. Otherwise, when two restarts bring no
+    // new pair, rounding bounds the attainable residual (it grows with lambda_max / lambda_1,
+    // i.e. with the mesh size): relax the margin, up to half the tolerance that the caller
+    // verifies. A band that still stalls fails, and the caller starts it afresh with a larger
+    // subspace.
+    settledRestarts = settled >= wanted ? settledRestarts + 1 : 0;
+    const bool refine = settledRestarts >= 2;
     if (converged > mostConverged)
     {
       mostConverged = converged;
@@ -681,7 +684,6 @@ Band RunBlockBand(const ShiftedFactor& factor,
     }
     else if (++stalled >= 2)
     {
-      refine = settled >= wanted;
       givenUp = margin >= 0.5;
       margin = std::min(0.5, 2.0 * margin);
       stalled = 0;
