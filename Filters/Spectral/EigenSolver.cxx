@@ -1082,8 +1082,15 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
       result.Seconds.Verification += SecondsSince(start);
       continue;
     }
-    proven = sigma;
-    attempt = 0;
+    // Only a band that proves more than before resets the retry counters: a shift moved below
+    // the seam may repeat what is proven, and must not keep the bands going round forever.
+    if (sigma > proven)
+    {
+      proven = sigma;
+      attempt = 0;
+      gaps = 0;
+      shortBands = 0;
+    }
     if (!(reference > 0.0) && trusted.Values.size() > 0)
     {
       const double top = std::abs(trusted.Values[trusted.Values.size() - 1]);
@@ -1096,10 +1103,8 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
         }
       }
     }
-    gaps = 0;
-    shortBands = 0;
     Merge(accepted, trusted, low - 0.25 * radius, L, M);
-    complete = high;
+    complete = std::max(complete, high);
     result.Seconds.RayleighRitz += SecondsSince(start);
     monitor.Report(std::min(1.0, static_cast<double>(accepted.CountBelow(complete)) / m));
 
