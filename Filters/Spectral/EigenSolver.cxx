@@ -639,6 +639,13 @@ Band RunBlockBand(const ShiftedFactor& factor,
       }
     }
     const int wanted = std::max(1, (4 * nev) / 5);
+    // A pair has settled when it has converged for the operator the iteration applies (its
+    // Ritz estimate alone); it has converged when its estimated residual passes as well.
+    const auto hasSettled = [&](Eigen::Index k)
+    {
+      return !(
+        coupling.col(k).norm() > (margin / initialMargin) * options.Tolerance * std::abs(theta[k]));
+    };
     int converged = 0;
     while (converged < std::min<int>(nev, static_cast<int>(applied)))
     {
@@ -647,25 +654,17 @@ Band RunBlockBand(const ShiftedFactor& factor,
       const double residual =
         std::sqrt(std::max(0.0, coupling.col(k).dot(residualGram * coupling.col(k)))) /
         std::abs(theta[k]);
-      if (coupling.col(k).norm() >
-          (margin / initialMargin) * options.Tolerance * std::abs(theta[k]) ||
+      if (!hasSettled(k) ||
         residual > margin * options.ResidualTolerance * std::max(std::abs(lambda), reference))
       {
         break;
       }
       ++converged;
     }
-    // The pairs that have converged for the operator the iteration applies (by their Ritz
-    // estimates alone).
     int settled = 0;
-    while (settled < std::min<int>(nev, static_cast<int>(applied)))
+    while (settled < std::min<int>(nev, static_cast<int>(applied)) &&
+      hasSettled(order[static_cast<std::size_t>(settled)]))
     {
-      const Eigen::Index k = order[static_cast<std::size_t>(settled)];
-      if (coupling.col(k).norm() >
-        (margin / initialMargin) * options.Tolerance * std::abs(theta[k]))
-      {
-        break;
-      }
       ++settled;
     }
     // When enough pairs have settled at two restarts in a row but too few pass their residual
@@ -1211,14 +1210,13 @@ EigenResult SmallestEigenpairs(
   else
   {
     const double area = M.sum();
-    Vector scaling;
     if (IsPositiveDiagonal(M))
     {
       // Q h = lambda D h with a diagonal D is the standard problem S y = lambda y with
       // S = D^-1/2 Q D^-1/2 and y = D^1/2 h: the same eigenvalues, the same inertia of every
       // shifted matrix (a congruence), and the D inner product of the iteration becomes the
       // Euclidean one, which saves a sparse product with D for every product of the iteration.
-      scaling = M.diagonal().cwiseSqrt().cwiseInverse();
+      const Vector scaling = M.diagonal().cwiseSqrt().cwiseInverse();
       const SparseMatrix S = scaling.asDiagonal() * L * scaling.asDiagonal();
       SparseMatrix identity(n, n);
       identity.setIdentity();
