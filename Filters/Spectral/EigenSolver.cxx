@@ -784,14 +784,18 @@ Band RunBlockBand(const ShiftedFactor& factor,
       // the pairs nearest the shift up to the first that fails. Too few left: the caller starts
       // the band afresh.
       std::vector<Eigen::Index> nearest;
-      int verified = Verify(AX,
-        mass ? MX : X,
-        shifted,
-        inverseMass,
-        sigma,
-        reference,
-        0.5 * options.ResidualTolerance,
-        nearest);
+      const auto verify = [&]()
+      {
+        return Verify(AX,
+          mass ? MX : X,
+          shifted,
+          inverseMass,
+          sigma,
+          reference,
+          0.5 * options.ResidualTolerance,
+          nearest);
+      };
+      int verified = verify();
       if (verified < converged)
       {
         // Unpivoted LDL^T of an indefinite L - sigma M has element growth: on the noisy tori of
@@ -815,14 +819,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
           MX = M.Matrix * X;
         }
         shifted = RayleighRitz(X, AX, mass);
-        verified = Verify(AX,
-          mass ? MX : X,
-          shifted,
-          inverseMass,
-          sigma,
-          reference,
-          0.5 * options.ResidualTolerance,
-          nearest);
+        verified = verify();
       }
       if (verified < std::max(1, wanted / 2))
       {
