@@ -77,7 +77,7 @@ public:
   int NegativePivots() const { return this->Negative; }
 
   /// X = A^-1 B with Eigen's solve on CHOLMOD's factor.
-  DenseMatrix SolveBlock(const DenseMatrix& B) const { return this->solve(B); }
+  DenseMatrix SolveBlock(const Eigen::Ref<const DenseMatrix>& B) const { return this->solve(B); }
 
 private:
   int Negative = 0;
@@ -125,7 +125,7 @@ public:
   const SparseMatrix& ShiftedMatrix() const { return this->Shifted; }
 
   /// X = (L - sigma M)^-1 B for a block of right-hand sides.
-  DenseMatrix SolveBlock(const DenseMatrix& B) const
+  DenseMatrix SolveBlock(const Eigen::Ref<const DenseMatrix>& B) const
   {
     return this->Supernodal ? this->Supernodal->Solve(B) : this->Simplicial->SolveBlock(B);
   }
@@ -422,7 +422,7 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
         deficient.push_back(i);
       }
     }
-    W = (W * S).eval();
+    MultiplyInPlace(W, S);
     R = (Rpass * R).eval();
     std::uniform_real_distribution<double> uniform(-0.5, 0.5);
     for (const Eigen::Index i : deficient)
@@ -774,11 +774,14 @@ Band RunBlockBand(const ShiftedFactor& factor,
         MX = M.Matrix * X;
         mass = &MX;
       }
+      // M X without a copy: MX, or X itself for the identity.
+      const auto massX = [&]()
+      { return mass ? Eigen::Ref<const DenseMatrix>(MX) : Eigen::Ref<const DenseMatrix>(X); };
       // The Ritz vectors of T are those of the Krylov space; their Rayleigh quotients for the
       // pencil itself are more accurate than the Ritz values of T, which carry the rounding of
       // every solve and Gram-Schmidt coefficient that built it. (The merge of the bands makes
       // a Rayleigh-Ritz step on the joint span of the overlap.)
-      Vector shifted = RayleighQuotients(X, AX, mass ? MX : X);
+      Vector shifted = RayleighQuotients(X, AX, massX());
       // The residual estimate above trusts the Lanczos relation, that is, exact solves: check
       // the true residuals (L - sigma M) x - (lambda - sigma) M x, a sparse product, and keep
       // the pairs nearest the shift up to the first that fails. Too few left: the caller starts
@@ -787,7 +790,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
       const auto verify = [&]()
       {
         return Verify(AX,
-          mass ? MX : X,
+          massX(),
           shifted,
           inverseMass,
           sigma,
@@ -809,7 +812,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
         // 1e-10 -> 1e-12.
         stats.Seconds.RayleighRitz += SecondsSince(start);
         start = Clock::now();
-        X -= factor.SolveBlock(AX - (mass ? MX : X) * shifted.asDiagonal());
+        X -= factor.SolveBlock(AX - massX() * shifted.asDiagonal());
         stats.OperatorApplications += converged;
         stats.Seconds.Solve += SecondsSince(start);
         start = Clock::now();

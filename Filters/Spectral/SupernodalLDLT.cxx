@@ -269,7 +269,7 @@ bool SupernodalLDLT::Factorize(const SparseMatrix& A)
 }
 
 //------------------------------------------------------------------------------
-DenseMatrix SupernodalLDLT::Solve(const DenseMatrix& B) const
+DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
 {
   DenseMatrix X(B.rows(), B.cols());
   const Eigen::Index half = B.cols() / 2;
@@ -360,8 +360,10 @@ void SupernodalLDLT::SolveRowsOfWidth(int width, double* Y) const
 }
 
 //------------------------------------------------------------------------------
-void SupernodalLDLT::SolveColumns(
-  const DenseMatrix& B, DenseMatrix& X, Eigen::Index first, Eigen::Index count) const
+void SupernodalLDLT::SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
+  DenseMatrix& X,
+  Eigen::Index first,
+  Eigen::Index count) const
 {
   const Eigen::Index n = this->Size;
   std::vector<double> rows;

@@ -57,7 +57,7 @@ public:
    * X = A^-1 B for the last factored A. The columns of B are split over two threads when there
    * are enough of them.
    */
-  DenseMatrix Solve(const DenseMatrix& B) const;
+  DenseMatrix Solve(const Eigen::Ref<const DenseMatrix>& B) const;
 
   /// Entries stored for L (with the zeros of relaxed supernodes).
   std::size_t FactorEntries() const { return this->Values.size(); }
@@ -79,7 +79,9 @@ private:
   Node Supernode(int s) const;
 
   /// Solve columns [first, first + count) of B into X.
-  void SolveColumns(const DenseMatrix& B, DenseMatrix& X, Eigen::Index first,
+  void SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
+    DenseMatrix& X,
+    Eigen::Index first,
     Eigen::Index count) const;
 
   /**
