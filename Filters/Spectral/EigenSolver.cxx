@@ -767,16 +767,14 @@ Band RunBlockBand(const ShiftedFactor& factor,
       auto X = V.leftCols(converged);
       auto AX = Workspace::Columns(work.Image, n, converged);
       AX.noalias() = factor.ShiftedMatrix() * X;
-      DenseMatrix MX;
-      DenseMatrix* mass = nullptr;
+      DenseMatrix MX; // M X; empty for the identity
       if (!M.Identity)
       {
         MX = M.Matrix * X;
-        mass = &MX;
       }
       // M X without a copy: MX, or X itself for the identity.
       const auto massX = [&]()
-      { return mass ? Eigen::Ref<const DenseMatrix>(MX) : Eigen::Ref<const DenseMatrix>(X); };
+      { return M.Identity ? Eigen::Ref<const DenseMatrix>(X) : Eigen::Ref<const DenseMatrix>(MX); };
       // The Ritz vectors of T are those of the Krylov space; their Rayleigh quotients for the
       // pencil itself are more accurate than the Ritz values of T, which carry the rounding of
       // every solve and Gram-Schmidt coefficient that built it. (The merge of the bands makes
@@ -817,11 +815,11 @@ Band RunBlockBand(const ShiftedFactor& factor,
         stats.Seconds.Solve += SecondsSince(start);
         start = Clock::now();
         AX.noalias() = factor.ShiftedMatrix() * X;
-        if (mass)
+        if (!M.Identity)
         {
           MX = M.Matrix * X;
         }
-        shifted = RayleighRitz(X, AX, mass);
+        shifted = RayleighRitz(X, AX, M.Identity ? nullptr : &MX);
         verified = verify();
       }
       if (verified < std::max(1, wanted / 2))
