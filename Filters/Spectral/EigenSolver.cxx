@@ -217,6 +217,11 @@ struct MassMatrix
     out.noalias() = this->Matrix * W;
     return out;
   }
+
+  /// Not for blocks or expressions: they would bind to a temporary copy, which the identity
+  /// case would return.
+  template<typename Other>
+  const DenseMatrix& Times(const Other& W, DenseMatrix& out) const = delete;
 };
 
 /// Eigenvalues of one band, sorted ascending; the vectors are the first columns of
