@@ -289,9 +289,11 @@ DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
  * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
  * the k-th entries of all W right-hand sides next to each other, and W is known at compile time,
  * so that every update of a row is a few vector instructions. Supernodes of a surface mesh are
- * mostly a few columns wide, too small for dense kernels to pay off: the forward solve goes
- * column by column (each column updates the rows below it), the backward solve row by row of
- * L^T (a dot product per column).
+ * mostly a few columns wide, too small for dense kernels to pay off. The forward solve updates
+ * every row below a supernode once with all of its columns (one read and one write of the row
+ * instead of one per column, and no chain of stores and loads on the same row); D is applied as
+ * each supernode is finished. The backward solve reads every row below a supernode once for
+ * four of its columns at a time, accumulating in registers.
  */
 template<int W>
 void SupernodalLDLT::SolveRows(double* Y) const
@@ -299,40 +301,92 @@ void SupernodalLDLT::SolveRows(double* Y) const
   using Row = Eigen::Matrix<double, W, 1>;
   using RowView = Eigen::Map<Row>;
   using ConstRowView = Eigen::Map<const Row>;
+  const auto row = [Y](int k) { return Y + static_cast<std::size_t>(k) * W; };
   const int nsuper = this->Supernodes();
-  for (int s = 0; s < nsuper; ++s) // L y = P b
+  for (int s = 0; s < nsuper; ++s) // L D y = P b
   {
     const Node node = this->Supernode(s);
-    for (int j = 0; j < node.Columns; ++j)
+    const int c = node.Columns;
+    const int r = node.Rows;
+    const double* L = node.Values;
+    // The supernode's own rows: unit lower triangular L11.
+    for (int j = 0; j < c; ++j)
     {
-      const Row y = ConstRowView(Y + static_cast<std::size_t>(node.First + j) * W);
-      const double* column = node.Values + static_cast<std::size_t>(j) * node.Rows;
-      for (int i = j + 1; i < node.Rows; ++i)
+      const Row y = ConstRowView(row(node.First + j));
+      for (int i = j + 1; i < c; ++i)
       {
-        RowView(Y + static_cast<std::size_t>(node.RowIndex[i]) * W) -= column[i] * y;
+        RowView(row(node.First + i)) -= L[static_cast<std::size_t>(j) * r + i] * y;
       }
     }
-  }
-  for (int s = 0; s < nsuper; ++s) // D z = y
-  {
-    const Node node = this->Supernode(s);
-    for (int j = 0; j < node.Columns; ++j)
+    // The rows below: each updated once with all the supernode's columns.
+    const double* own = row(node.First);
+    for (int i = c; i < r; ++i)
     {
-      RowView(Y + static_cast<std::size_t>(node.First + j) * W) /=
-        node.Values[static_cast<std::size_t>(j) * (node.Rows + 1)];
+      RowView target(row(node.RowIndex[i]));
+      Row acc = target;
+      for (int j = 0; j < c; ++j)
+      {
+        acc -= L[static_cast<std::size_t>(j) * r + i] *
+          ConstRowView(own + static_cast<std::size_t>(j) * W);
+      }
+      target = acc;
+    }
+    for (int j = 0; j < c; ++j)
+    {
+      RowView(row(node.First + j)) /= L[static_cast<std::size_t>(j) * (r + 1)];
     }
   }
   for (int s = nsuper - 1; s >= 0; --s) // L^T x = z
   {
     const Node node = this->Supernode(s);
-    for (int j = node.Columns - 1; j >= 0; --j)
+    const int c = node.Columns;
+    const int r = node.Rows;
+    const double* L = node.Values;
+    double* own = row(node.First);
+    // The rows below, four columns at a time: every row read once per four columns.
+    int j0 = 0;
+    for (; j0 + 4 <= c; j0 += 4)
     {
-      RowView target(Y + static_cast<std::size_t>(node.First + j) * W);
-      Row x = target;
-      const double* column = node.Values + static_cast<std::size_t>(j) * node.Rows;
-      for (int i = j + 1; i < node.Rows; ++i)
+      Row a0 = ConstRowView(own + static_cast<std::size_t>(j0) * W);
+      Row a1 = ConstRowView(own + static_cast<std::size_t>(j0 + 1) * W);
+      Row a2 = ConstRowView(own + static_cast<std::size_t>(j0 + 2) * W);
+      Row a3 = ConstRowView(own + static_cast<std::size_t>(j0 + 3) * W);
+      const double* l0 = L + static_cast<std::size_t>(j0) * r;
+      const double* l1 = l0 + r;
+      const double* l2 = l1 + r;
+      const double* l3 = l2 + r;
+      for (int i = c; i < r; ++i)
       {
-        x -= column[i] * ConstRowView(Y + static_cast<std::size_t>(node.RowIndex[i]) * W);
+        const Row z = ConstRowView(row(node.RowIndex[i]));
+        a0 -= l0[i] * z;
+        a1 -= l1[i] * z;
+        a2 -= l2[i] * z;
+        a3 -= l3[i] * z;
+      }
+      RowView(own + static_cast<std::size_t>(j0) * W) = a0;
+      RowView(own + static_cast<std::size_t>(j0 + 1) * W) = a1;
+      RowView(own + static_cast<std::size_t>(j0 + 2) * W) = a2;
+      RowView(own + static_cast<std::size_t>(j0 + 3) * W) = a3;
+    }
+    for (; j0 < c; ++j0)
+    {
+      Row a = ConstRowView(own + static_cast<std::size_t>(j0) * W);
+      const double* l = L + static_cast<std::size_t>(j0) * r;
+      for (int i = c; i < r; ++i)
+      {
+        a -= l[i] * ConstRowView(row(node.RowIndex[i]));
+      }
+      RowView(own + static_cast<std::size_t>(j0) * W) = a;
+    }
+    // The supernode's own rows: unit upper triangular L11^T.
+    for (int j = c - 1; j >= 0; --j)
+    {
+      RowView target(own + static_cast<std::size_t>(j) * W);
+      Row x = target;
+      for (int i = j + 1; i < c; ++i)
+      {
+        x -= L[static_cast<std::size_t>(j) * r + i] *
+          ConstRowView(own + static_cast<std::size_t>(i) * W);
       }
       target = x;
     }
@@ -371,17 +425,21 @@ void SupernodalLDLT::SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
   {
     const int used = static_cast<int>(std::min<Eigen::Index>(count - done, MaxWidth));
     const int width = (used + 3) / 4 * 4;
-    rows.assign(static_cast<std::size_t>(n) * width, 0.0);
+    rows.resize(static_cast<std::size_t>(n) * width);
     RowBlockView Y(rows.data(), n, width);
     const Eigen::Index column = first + done;
-    for (Eigen::Index k = 0; k < n; ++k)
+    // Rows of B in their own order (each column streamed), each to its place in the permuted
+    // order: one scattered write of a short row instead of a scattered read per column.
+    for (Eigen::Index i = 0; i < n; ++i)
     {
-      Y.row(k).head(used) = B.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used);
+      auto target = Y.row(this->Inverse[static_cast<std::size_t>(i)]);
+      target.head(used) = B.row(i).segment(column, used);
+      target.tail(width - used).setZero();
     }
     this->SolveRowsOfWidth(width, rows.data());
-    for (Eigen::Index k = 0; k < n; ++k)
+    for (Eigen::Index i = 0; i < n; ++i)
     {
-      X.row(this->Perm[static_cast<std::size_t>(k)]).segment(column, used) = Y.row(k).head(used);
+      X.row(i).segment(column, used) = Y.row(this->Inverse[static_cast<std::size_t>(i)]).head(used);
     }
     done += used;
   }
