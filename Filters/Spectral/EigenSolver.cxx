@@ -1422,26 +1422,32 @@ Vector RelativeResiduals(
   const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
   reference = std::max(reference, 1e-6 * traceRatio);
   // A block of columns at a time: the residuals of all m pairs at once would take twice the
-  // memory of the basis. The same two blocks serve every block of columns.
+  // memory of the basis. Two threads take half of the columns each (the sparse products are
+  // single-threaded), each with its own two blocks.
   Vector out(lambda.size());
-  const Eigen::Index block = 64;
-  DenseMatrix R(Phi.rows(), std::min(block, lambda.size()));
-  DenseMatrix MPhi(Phi.rows(), R.cols());
-  for (Eigen::Index first = 0; first < lambda.size(); first += block)
-  {
-    const Eigen::Index count = std::min(block, lambda.size() - first);
-    const auto columns = Phi.middleCols(first, count);
-    R.leftCols(count).noalias() = L * columns;
-    MPhi.leftCols(count).noalias() = M * columns;
-    R.leftCols(count) -= MPhi.leftCols(count) * lambda.segment(first, count).asDiagonal();
-    for (Eigen::Index j = 0; j < count; ++j)
+  const Eigen::Index block = 32;
+  ForEachRowRange(lambda.size(),
+    RowParts(Phi.rows()),
+    [&](int, Eigen::Index begin, Eigen::Index columns)
     {
-      const Eigen::Index k = first + j;
-      const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
-      out[k] = norm / std::max({ std::abs(lambda[k]), reference,
-                        std::numeric_limits<double>::min() });
-    }
-  }
+      DenseMatrix R(Phi.rows(), std::min(block, columns));
+      DenseMatrix MPhi(Phi.rows(), R.cols());
+      for (Eigen::Index first = begin; first < begin + columns; first += block)
+      {
+        const Eigen::Index count = std::min(block, begin + columns - first);
+        const auto part = Phi.middleCols(first, count);
+        R.leftCols(count).noalias() = L * part;
+        MPhi.leftCols(count).noalias() = M * part;
+        R.leftCols(count) -= MPhi.leftCols(count) * lambda.segment(first, count).asDiagonal();
+        for (Eigen::Index j = 0; j < count; ++j)
+        {
+          const Eigen::Index k = first + j;
+          const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
+          out[k] =
+            norm / std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
+        }
+      }
+    });
   return out;
 }
 
