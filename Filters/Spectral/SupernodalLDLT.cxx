@@ -35,6 +35,12 @@ double* Scratch(std::vector<double>& buffer, std::size_t size)
 /// of 4 (one or more SIMD registers); fewer right-hand sides are padded with zeros.
 constexpr int MaxWidth = 16;
 
+/// The row width that holds `used` right-hand sides (at most MaxWidth): the next multiple of 4.
+int PaddedWidth(Eigen::Index used)
+{
+  return static_cast<int>((used + 3) / 4 * 4);
+}
+
 /// CHOLMOD's workspace for one analysis, released on every path out.
 struct CholmodSession
 {
@@ -114,11 +120,10 @@ SupernodalLDLT::SupernodalLDLT(const SparseMatrix& pattern)
     this->ValueStart[k] = static_cast<std::size_t>(px[k]);
   }
   this->Values.assign(static_cast<std::size_t>(px[nsuper]), 0.0);
-  this->Perm.assign(perm, perm + this->Size);
-  this->Inverse.resize(this->Perm.size());
-  for (std::size_t k = 0; k < this->Perm.size(); ++k)
+  this->Inverse.resize(static_cast<std::size_t>(this->Size));
+  for (Eigen::Index k = 0; k < this->Size; ++k)
   {
-    this->Inverse[static_cast<std::size_t>(this->Perm[k])] = static_cast<int>(k);
+    this->Inverse[static_cast<std::size_t>(perm[k])] = static_cast<int>(k);
   }
   this->SupernodeOf.resize(static_cast<std::size_t>(this->Size));
   for (std::size_t k = 0; k < nsuper; ++k)
@@ -320,15 +325,13 @@ void SupernodalLDLT::SolveRows(double* Y) const
       }
     }
     // The rows below: each updated once with all the supernode's columns.
-    const double* own = row(node.First);
     for (int i = c; i < r; ++i)
     {
       RowView target(row(node.RowIndex[i]));
       Row acc = target;
       for (int j = 0; j < c; ++j)
       {
-        acc -= L[static_cast<std::size_t>(j) * r + i] *
-          ConstRowView(own + static_cast<std::size_t>(j) * W);
+        acc -= L[static_cast<std::size_t>(j) * r + i] * ConstRowView(row(node.First + j));
       }
       target = acc;
     }
@@ -343,15 +346,14 @@ void SupernodalLDLT::SolveRows(double* Y) const
     const int c = node.Columns;
     const int r = node.Rows;
     const double* L = node.Values;
-    double* own = row(node.First);
     // The rows below, four columns at a time: every row read once per four columns.
     int j0 = 0;
     for (; j0 + 4 <= c; j0 += 4)
     {
-      Row a0 = ConstRowView(own + static_cast<std::size_t>(j0) * W);
-      Row a1 = ConstRowView(own + static_cast<std::size_t>(j0 + 1) * W);
-      Row a2 = ConstRowView(own + static_cast<std::size_t>(j0 + 2) * W);
-      Row a3 = ConstRowView(own + static_cast<std::size_t>(j0 + 3) * W);
+      Row a0 = ConstRowView(row(node.First + j0));
+      Row a1 = ConstRowView(row(node.First + j0 + 1));
+      Row a2 = ConstRowView(row(node.First + j0 + 2));
+      Row a3 = ConstRowView(row(node.First + j0 + 3));
       const double* l0 = L + static_cast<std::size_t>(j0) * r;
       const double* l1 = l0 + r;
       const double* l2 = l1 + r;
@@ -364,30 +366,29 @@ void SupernodalLDLT::SolveRows(double* Y) const
         a2 -= l2[i] * z;
         a3 -= l3[i] * z;
       }
-      RowView(own + static_cast<std::size_t>(j0) * W) = a0;
-      RowView(own + static_cast<std::size_t>(j0 + 1) * W) = a1;
-      RowView(own + static_cast<std::size_t>(j0 + 2) * W) = a2;
-      RowView(own + static_cast<std::size_t>(j0 + 3) * W) = a3;
+      RowView(row(node.First + j0)) = a0;
+      RowView(row(node.First + j0 + 1)) = a1;
+      RowView(row(node.First + j0 + 2)) = a2;
+      RowView(row(node.First + j0 + 3)) = a3;
     }
     for (; j0 < c; ++j0)
     {
-      Row a = ConstRowView(own + static_cast<std::size_t>(j0) * W);
+      Row a = ConstRowView(row(node.First + j0));
       const double* l = L + static_cast<std::size_t>(j0) * r;
       for (int i = c; i < r; ++i)
       {
         a -= l[i] * ConstRowView(row(node.RowIndex[i]));
       }
-      RowView(own + static_cast<std::size_t>(j0) * W) = a;
+      RowView(row(node.First + j0)) = a;
     }
     // The supernode's own rows: unit upper triangular L11^T.
     for (int j = c - 1; j >= 0; --j)
     {
-      RowView target(own + static_cast<std::size_t>(j) * W);
+      RowView target(row(node.First + j));
       Row x = target;
       for (int i = j + 1; i < c; ++i)
       {
-        x -= L[static_cast<std::size_t>(j) * r + i] *
-          ConstRowView(own + static_cast<std::size_t>(i) * W);
+        x -= L[static_cast<std::size_t>(j) * r + i] * ConstRowView(row(node.First + i));
       }
       target = x;
     }
@@ -423,12 +424,12 @@ void SupernodalLDLT::SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
   const Eigen::Index n = this->Size;
   // Not initialized: the copy below writes every entry (a zero fill of a few MB per solve showed
   // as 2.5% of a benchmark profile).
-  const Eigen::Index widest = (std::min<Eigen::Index>(count, MaxWidth) + 3) / 4 * 4;
-  std::unique_ptr<double[]> rows(new double[static_cast<std::size_t>(n * widest)]);
+  const int widest = PaddedWidth(std::min<Eigen::Index>(count, MaxWidth));
+  std::unique_ptr<double[]> rows(new double[static_cast<std::size_t>(n) * widest]);
   for (Eigen::Index done = 0; done < count;)
   {
     const int used = static_cast<int>(std::min<Eigen::Index>(count - done, MaxWidth));
-    const int width = (used + 3) / 4 * 4;
+    const int width = PaddedWidth(used);
     RowBlockView Y(rows.get(), n, width);
     const Eigen::Index column = first + done;
     // Rows of B in their own order (each column streamed), each to its place in the permuted

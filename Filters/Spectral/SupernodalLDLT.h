@@ -95,8 +95,7 @@ private:
   void SolveRowsOfWidth(int width, double* Y) const;
 
   Eigen::Index Size = 0;
-  /// Perm[k]: the row of A that becomes row k of P A P^T; Inverse is its inverse.
-  std::vector<int> Perm;
+  /// Inverse[i]: the row of P A P^T that row i of A becomes (the inverse of CHOLMOD's ordering).
   std::vector<int> Inverse;
   /// Supernode s holds columns [First[s], First[s+1]).
   std::vector<int> First;
