@@ -410,12 +410,32 @@ void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z)
     });
 }
 
-/// W -= B (B^T M W) for a tall n-row B; returns B^T M W.
-DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, const MassMatrix& M)
+/**
+ * W -= B (B^T M W) for a tall n-row B; returns B^T M W. Given `single` (B in single precision)
+ * and the squared M-norms of the columns of W, the subtraction uses `single` when every
+ * coefficient is below 1e-8 of its column (SubtractSmallProduct).
+ */
+DenseMatrix Project(DenseMatrix& W,
+  const Eigen::Ref<const DenseMatrix>& B,
+  const MassMatrix& M,
+  const Eigen::Ref<const Eigen::MatrixXf>* single = nullptr,
+  const Vector* squaredNorms = nullptr)
 {
   DenseMatrix scratch;
   const DenseMatrix C = TransposeProduct(B, M.Times(W, scratch));
-  SubtractProduct(W, B, C);
+  const auto small = [&]()
+  {
+    const Vector largest = C.cwiseAbs().colwise().maxCoeff().transpose();
+    return (largest.array() <= 1e-8 * squaredNorms->cwiseSqrt().array()).all();
+  };
+  if (single && squaredNorms && small())
+  {
+    SubtractSmallProduct(W, *single, C);
+  }
+  else
+  {
+    SubtractProduct(W, B, C);
+  }
   return C;
 }
 
@@ -683,22 +703,12 @@ Band RunBlockBand(const ShiftedFactor& factor,
       DenseMatrix C = DenseMatrix::Zero(filled, b);
       C.bottomRows(filled - local) = Project(W, V.middleCols(local, filled - local), M);
       Vector before = MassNorms(W, M);
+      // What the recurrence left along the basis is tiny (1e-13 to 1e-9 of the column on the
+      // benchmark's tori): then the single-precision copy of the basis subtracts it.
+      const Eigen::Ref<const Eigen::MatrixXf> single = Vs.leftCols(filled);
       for (int pass = 0; pass < 3; ++pass)
       {
-        // What the recurrence left along the basis is tiny (1e-13 to 1e-9 of the column on the
-        // benchmark's tori): then the single-precision copy of the basis subtracts it.
-        DenseMatrix scratch;
-        const DenseMatrix Cpass = TransposeProduct(basis, M.Times(W, scratch));
-        const Vector largest = Cpass.cwiseAbs().colwise().maxCoeff().transpose();
-        if ((largest.array() <= 1e-8 * before.cwiseSqrt().array()).all())
-        {
-          SubtractSmallProduct(W, Vs.leftCols(filled), Cpass);
-        }
-        else
-        {
-          SubtractProduct(W, basis, Cpass);
-        }
-        C += Cpass;
+        C += Project(W, basis, M, &single, &before);
         const Vector after = MassNorms(W, M);
         if ((after.array() >= 0.5 * before.array()).all())
         {
