@@ -240,13 +240,9 @@ struct Workspace
 {
   DenseMatrix Basis; ///< the Lanczos basis of a band, then the band's vectors in its first columns
   DenseMatrix Image; ///< (L - sigma M) X for Ritz vectors X, or L Y in the band merge
-  /// The Lanczos basis in single precision, for the subtraction of Gram-Schmidt's last pass
-  /// (SubtractSmallProduct).
-  Eigen::MatrixXf Single;
 
   /// The first `cols` columns of A, resized to `rows` x `cols` only when it is too small.
-  template<typename Matrix>
-  static Eigen::Block<Matrix, Eigen::Dynamic, Eigen::Dynamic, true> Columns(Matrix& A,
+  static Eigen::Block<DenseMatrix, Eigen::Dynamic, Eigen::Dynamic, true> Columns(DenseMatrix& A,
     Eigen::Index rows,
     Eigen::Index cols)
   {
@@ -354,41 +350,6 @@ void SubtractProduct(DenseMatrix& A, const Eigen::Ref<const DenseMatrix>& B, con
 }
 
 /**
- * A -= B C for tall n-row A, B given in single precision as Bs, and small coefficients C: when
- * every entry of C is below 1e-8 (relative to the columns of A), rounding B and C to single
- * precision perturbs A by less than 1e-15 of its norm, while the product streams half the bytes
- * at twice the arithmetic rate. Row chunks of 2048 keep the single-precision product in cache.
- */
-void SubtractSmallProduct(DenseMatrix& A,
-  const Eigen::Ref<const Eigen::MatrixXf>& Bs,
-  const DenseMatrix& C)
-{
-  const Eigen::MatrixXf Cs = C.cast<float>();
-  const Eigen::Index chunk = 2048;
-  ForEachRowRange(A.rows(),
-    RowParts(A.rows()),
-    [&](int, Eigen::Index first, Eigen::Index count)
-    {
-      Eigen::MatrixXf part(std::min(chunk, count), C.cols());
-      for (Eigen::Index r = first; r < first + count; r += chunk)
-      {
-        const Eigen::Index h = std::min(chunk, first + count - r);
-        part.topRows(h).noalias() = Bs.middleRows(r, h) * Cs;
-        A.middleRows(r, h) -= part.topRows(h).cast<double>();
-      }
-    });
-}
-
-/// The columns of `from` into `to` in single precision, by row halves.
-void StoreSingle(Eigen::Ref<Eigen::MatrixXf> to, const Eigen::Ref<const DenseMatrix>& from)
-{
-  ForEachRowRange(from.rows(),
-    RowParts(from.rows()),
-    [&](int, Eigen::Index first, Eigen::Index count)
-    { to.middleRows(first, count) = from.middleRows(first, count).cast<float>(); });
-}
-
-/**
  * X.leftCols(Z.cols()) = X.leftCols(Z.rows()) Z in place (Z.cols() <= Z.rows()), a few hundred
  * rows at a time through a small buffer: rotating or compressing a tall basis needs no second
  * n-row matrix.
@@ -410,32 +371,12 @@ void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z)
     });
 }
 
-/**
- * W -= B (B^T M W) for a tall n-row B; returns B^T M W. Given `single` (B in single precision)
- * and the squared M-norms of the columns of W, the subtraction uses `single` when every
- * coefficient is below 1e-8 of its column (SubtractSmallProduct).
- */
-DenseMatrix Project(DenseMatrix& W,
-  const Eigen::Ref<const DenseMatrix>& B,
-  const MassMatrix& M,
-  const Eigen::Ref<const Eigen::MatrixXf>* single = nullptr,
-  const Vector* squaredNorms = nullptr)
+/// W -= B (B^T M W) for a tall n-row B; returns B^T M W.
+DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, const MassMatrix& M)
 {
   DenseMatrix scratch;
   const DenseMatrix C = TransposeProduct(B, M.Times(W, scratch));
-  const auto small = [&]()
-  {
-    const Vector largest = C.cwiseAbs().colwise().maxCoeff().transpose();
-    return (largest.array() <= 1e-8 * squaredNorms->cwiseSqrt().array()).all();
-  };
-  if (single && squaredNorms && small())
-  {
-    SubtractSmallProduct(W, *single, C);
-  }
-  else
-  {
-    SubtractProduct(W, B, C);
-  }
+  SubtractProduct(W, B, C);
   return C;
 }
 
@@ -616,15 +557,14 @@ void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
  * The nev eigenpairs nearest sigma by block Lanczos on Op = (L - sigma M)^-1 M in the M inner
  * product, with full block reorthogonalization (the block recurrence, then classical
  * Gram-Schmidt against the whole basis, repeated only where it cancels; matrix-matrix products
- * only; the subtraction of that pass from a single-precision copy of the basis when its
- * coefficients are tiny, see SubtractSmallProduct) and thick restarts that keep the best Ritz
- * vectors. The projected matrix T = V^T M Op V is assembled from the Gram-Schmidt coefficients. A
- * block of b vectors finds eigenvalues of multiplicity up to b directly. A pair counts as converged
- * when its Ritz estimate is below Tolerance and its residual below ResidualTolerance / 20 (relaxed
- * up to / 2 when the iteration stalls), relative to max(|lambda|, lambdaReference) (lambdaReference
- * <= 0: the band's first non-zero eigenvalue). \throws SolverFailure without convergence;
- * ShiftTooClose (meanGap > 0: the spacing of the eigenvalues near sigma) when an eigenvalue lies
- * within meanGap / 40 of sigma.
+ * only) and thick restarts that keep the best Ritz vectors. The projected matrix
+ * T = V^T M Op V is assembled from the Gram-Schmidt coefficients. A block of b vectors finds
+ * eigenvalues of multiplicity up to b directly. A pair counts as converged when its Ritz estimate
+ * is below Tolerance and its residual below ResidualTolerance / 20 (relaxed up to / 2 when the
+ * iteration stalls), relative to max(|lambda|, lambdaReference) (lambdaReference <= 0: the
+ * band's first non-zero eigenvalue).
+ * \throws SolverFailure without convergence; ShiftTooClose (meanGap > 0: the spacing of the
+ *         eigenvalues near sigma) when an eigenvalue lies within meanGap / 40 of sigma.
  */
 Band RunBlockBand(const ShiftedFactor& factor,
   const MassMatrix& M,
@@ -655,7 +595,6 @@ Band RunBlockBand(const ShiftedFactor& factor,
   std::uniform_real_distribution<double> uniform(-0.5, 0.5);
 
   auto V = Workspace::Columns(work.Basis, n, maxDim + b);
-  auto Vs = Workspace::Columns(work.Single, n, maxDim + b);
   DenseMatrix T = DenseMatrix::Zero(maxDim + b, maxDim + b);
   DenseMatrix W(n, b);
   for (Eigen::Index j = 0; j < b; ++j)
@@ -667,7 +606,6 @@ Band RunBlockBand(const ShiftedFactor& factor,
   }
   Orthonormalize(W, M, V.leftCols(0), 0.0, generator);
   V.leftCols(b) = W;
-  StoreSingle(Vs.leftCols(b), W);
   Eigen::Index applied = 0; // columns whose image under Op is in T
   Eigen::Index filled = b;  // columns of V in use
   // The first block applied after a (re)start: its image couples to every column before it.
@@ -703,12 +641,9 @@ Band RunBlockBand(const ShiftedFactor& factor,
       DenseMatrix C = DenseMatrix::Zero(filled, b);
       C.bottomRows(filled - local) = Project(W, V.middleCols(local, filled - local), M);
       Vector before = MassNorms(W, M);
-      // What the recurrence left along the basis is tiny (1e-13 to 1e-9 of the column on the
-      // benchmark's tori): then the single-precision copy of the basis subtracts it.
-      const Eigen::Ref<const Eigen::MatrixXf> single = Vs.leftCols(filled);
       for (int pass = 0; pass < 3; ++pass)
       {
-        C += Project(W, basis, M, &single, &before);
+        C += Project(W, basis, M);
         const Vector after = MassNorms(W, M);
         if ((after.array() >= 0.5 * before.array()).all())
         {
@@ -722,7 +657,6 @@ Band RunBlockBand(const ShiftedFactor& factor,
       T.block(filled, applied, b, b) = R;
       T.block(applied, filled, b, b) = R.transpose();
       V.middleCols(filled, b) = W;
-      StoreSingle(Vs.middleCols(filled, b), W);
       applied = filled;
       filled += b;
       stats.Seconds.Orthogonalization += SecondsSince(start);
@@ -938,7 +872,6 @@ Band RunBlockBand(const ShiftedFactor& factor,
     const DenseMatrix link = T.block(applied, 0, b, applied) * Y;
     MultiplyInPlace(V.leftCols(applied), Y);
     V.middleCols(keep, b) = last;
-    StoreSingle(Vs.leftCols(keep + b), V.leftCols(keep + b));
     T.setZero();
     T.topLeftCorner(keep, keep) = kept.asDiagonal();
     T.block(keep, 0, b, keep) = link;

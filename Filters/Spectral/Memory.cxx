@@ -50,7 +50,7 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   MemoryEstimate estimate;
   estimate.Basis = n * harmonics * static_cast<std::uint64_t>(bytesPerValue);
   estimate.Eigenvectors = nUsed * harmonics * 8;
-  estimate.Krylov = nUsed * (3 * band + 100) * 12;
+  estimate.Krylov = nUsed * (3 * band + 100) * 8;
   estimate.Factor = nUsed * 80 * 12;
   return estimate;
 }

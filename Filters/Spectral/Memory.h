@@ -12,8 +12,7 @@
  *
  *     n m b                     the output basis, b = 8 (double) or 4 (float) bytes a value
  *   + nUsed m 8                 the solver's eigenvector block (always double)
- *   + nUsed (3 k + 100) 12      the Lanczos workspace of a band of k pairs: its Krylov basis
- *                               (in double, and a single-precision copy for reorthogonalization),
+ *   + nUsed (3 k + 100) 8       the Lanczos workspace of a band of k pairs: its Krylov basis,
  *                               block products and Ritz vectors
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
@@ -23,8 +22,8 @@
  * It is an estimate, not a bound: it leaves out the mesh and the sparse operators, which are
  * small beside these terms (a few hundred bytes a point), and the fill-in of the factor depends
  * on the mesh. On the 100,045-point torus of bench/ManifoldHarmonicsBench with m = 500 it gives
- * 1.38e9 bytes; the benchmark (`--case 100000:500`, no VTK output) measured a peak resident
- * size of 1037 MiB (1.09e9 bytes).
+ * 1.22e9 bytes; the benchmark (`--case 100000:500`, no VTK output) measured a peak resident
+ * size of 905 MiB (0.95e9 bytes).
  *
  * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestMemory.cxx.
  */
@@ -42,7 +41,7 @@ struct MemoryEstimate
   std::uint64_t Basis = 0;
   /// The eigensolver's own block of eigenvectors: nUsed m doubles.
   std::uint64_t Eigenvectors = 0;
-  /// The Lanczos workspace of one band: nUsed (3 k + 100) doubles and as many floats.
+  /// The Lanczos workspace of one band: nUsed (3 k + 100) doubles.
   std::uint64_t Krylov = 0;
   /// The sparse factor: nUsed 80 (value, index) pairs of 12 bytes.
   std::uint64_t Factor = 0;

@@ -27,9 +27,9 @@ void EstimateFormula()
   CheckNear(static_cast<double>(f.Basis), 4e9, 0.0, "float basis: n m 4");
   CheckNear(static_cast<double>(d.Eigenvectors), 8e9, 0.0, "solver eigenvectors: n m 8");
   CheckNear(static_cast<double>(d.Krylov),
-    1e6 * (3 * 100 + 100) * 12.0,
+    1e6 * (3 * 100 + 100) * 8.0,
     0.0,
-    "Krylov workspace: n (3 k + 100) 12");
+    "Krylov workspace: n (3 k + 100) 8");
   CheckNear(static_cast<double>(d.Factor), 1e6 * 80 * 12.0, 0.0, "sparse factor: n 80 12");
   CheckNear(static_cast<double>(d.Total() - f.Total()), 4e9, 0.0, "float saves n m 4");
 
@@ -37,7 +37,7 @@ void EstimateFormula()
   const MemoryEstimate partial = EstimateBasisMemory(1000, 600, 10, 20, 8);
   CheckNear(static_cast<double>(partial.Basis), 1000 * 10 * 8.0, 0.0, "basis over all n points");
   CheckNear(static_cast<double>(partial.Eigenvectors + partial.Krylov + partial.Factor),
-    600 * 10 * 8.0 + 600 * (3 * 20 + 100) * 12.0 + 600 * 80 * 12.0,
+    600 * (10 + 3 * 20 + 100) * 8.0 + 600 * 80 * 12.0,
     0.0,
     "solver terms over the used points");
 }
