@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "EigenSolver.h"
+#include "BlockProducts.h"
 #include "Memory.h"
 #include "SupernodalLDLT.h"
 #include "Threads.h"
@@ -318,38 +319,6 @@ Band RunBand(const ShiftInvertOp& op,
 }
 
 /**
- * The dense products of the block iteration, split by rows over two threads (ForEachRowRange):
- * they stream the n-row basis through memory once per call, and each thread takes half of the
- * rows. Below 8192 rows one thread does it all.
- */
-int RowParts(Eigen::Index n)
-{
-  return n < 8192 ? 1 : 2;
-}
-
-/// B^T A for tall n-row A and B (small result), summed over two row halves.
-DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B,
-  const Eigen::Ref<const DenseMatrix>& A)
-{
-  DenseMatrix parts[2] = { DenseMatrix::Zero(B.cols(), A.cols()),
-    DenseMatrix::Zero(B.cols(), A.cols()) };
-  ForEachRowRange(A.rows(), RowParts(A.rows()),
-    [&](int part, Eigen::Index first, Eigen::Index count) {
-      parts[part].noalias() = B.middleRows(first, count).transpose() * A.middleRows(first, count);
-    });
-  return parts[0] + parts[1];
-}
-
-/// A -= B C for tall n-row A and B, by row halves.
-void SubtractProduct(DenseMatrix& A, const Eigen::Ref<const DenseMatrix>& B, const DenseMatrix& C)
-{
-  ForEachRowRange(
-    A.rows(), RowParts(A.rows()), [&](int, Eigen::Index first, Eigen::Index count) {
-      A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C;
-    });
-}
-
-/**
  * X.leftCols(Z.cols()) = X.leftCols(Z.rows()) Z in place (Z.cols() <= Z.rows()), a few hundred
  * rows at a time through a small buffer: rotating or compressing a tall basis needs no second
  * n-row matrix.
@@ -358,7 +327,7 @@ void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z)
 {
   const Eigen::Index chunk = 256;
   ForEachRowRange(X.rows(),
-    RowParts(X.rows()),
+    BlockThreads(X.rows()),
     [&](int, Eigen::Index first, Eigen::Index count)
     {
       DenseMatrix rows(std::min(chunk, count), Z.cols());
@@ -1251,7 +1220,7 @@ bool IsPositiveDiagonal(const SparseMatrix& M)
 void ScaleRows(DenseMatrix& Phi, const Vector& scaling)
 {
   ForEachRowRange(Phi.rows(),
-    RowParts(Phi.rows()),
+    BlockThreads(Phi.rows()),
     [&](int, Eigen::Index first, Eigen::Index count)
     {
       for (Eigen::Index k = 0; k < Phi.cols(); ++k)
@@ -1370,7 +1339,7 @@ Vector RelativeResiduals(
   Vector out(lambda.size());
   const Eigen::Index block = 32;
   ForEachRowRange(lambda.size(),
-    RowParts(Phi.rows()),
+    BlockThreads(Phi.rows()),
     [&](int, Eigen::Index begin, Eigen::Index columns)
     {
       DenseMatrix R(Phi.rows(), std::min(block, columns));

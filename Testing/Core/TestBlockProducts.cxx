@@ -1,0 +1,100 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Properties of the narrow block products (Filters/Spectral/BlockProducts.h): they equal the
+// general products B^T A and A - B C for every width, for bases that are the leading columns of a
+// larger matrix, on one thread and on two; and projecting a block out of an orthonormal basis
+// leaves it orthogonal to the basis.
+#include "BlockProducts.h"
+#include "Checks.h"
+
+#include <Eigen/Dense>
+
+#include <string>
+
+using namespace spectral;
+using namespace spectral::testing;
+
+namespace
+{
+/// A fixed pseudo-random n x count matrix (the same on every run).
+DenseMatrix Fixed(Eigen::Index n, Eigen::Index count, double seed)
+{
+  DenseMatrix A(n, count);
+  for (Eigen::Index j = 0; j < count; ++j)
+  {
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+      A(i, j) = std::sin(seed * static_cast<double>(i + 1) + 0.71 * static_cast<double>(j + 1));
+    }
+  }
+  return A;
+}
+
+//------------------------------------------------------------------------------
+void MatchGeneralProducts()
+{
+  // Row counts below and above the two-thread threshold (8192) and across several chunks of
+  // 2048 rows; basis widths below the kernels' threshold (96 columns, general product) and above
+  // it with remainders for every grouping of columns (103 = 12 x 8 + 4 + 2 + 1, 134 = 16 x 8 + 4
+  // + 2); block widths 1 to 16 (padded to 4, 8 or 16) and 20 (general product).
+  for (const Eigen::Index n : { Eigen::Index(37), Eigen::Index(9001), Eigen::Index(20011) })
+  {
+    const DenseMatrix storage = Fixed(n, 140, 0.37);
+    for (const Eigen::Index K : { Eigen::Index(7), Eigen::Index(103), Eigen::Index(134) })
+    {
+      const auto B = storage.leftCols(K);
+      double worstProduct = 0.0;
+      double worstUpdate = 0.0;
+      for (const Eigen::Index w : { 1, 3, 4, 5, 8, 11, 12, 13, 16, 20 })
+      {
+        const DenseMatrix A = Fixed(n, w, 0.53);
+        const DenseMatrix expected = B.transpose() * A;
+        const DenseMatrix C = TransposeProduct(B, A);
+        const double scale = static_cast<double>(n);
+        worstProduct = std::max(worstProduct, (C - expected).cwiseAbs().maxCoeff() / scale);
+
+        const DenseMatrix coefficients = Fixed(K, w, 0.19);
+        DenseMatrix updated = A;
+        SubtractProduct(updated, B, coefficients);
+        const DenseMatrix reference = A - B * coefficients;
+        worstUpdate = std::max(worstUpdate,
+          (updated - reference).cwiseAbs().maxCoeff() / (1.0 + static_cast<double>(K)));
+      }
+      const std::string shape = "n = " + std::to_string(n) + ", K = " + std::to_string(K);
+      CheckBelow(worstProduct, 1e-14, shape + ": B^T A, max entry difference / n");
+      CheckBelow(worstUpdate, 1e-14, shape + ": A - B C, max entry difference / (K + 1)");
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void ProjectionOrthogonal()
+{
+  // Q orthonormal (Householder QR); A - Q (Q^T A) must be orthogonal to Q, and applying the
+  // projection again must change it only by rounding.
+  const Eigen::Index n = 30001;
+  const Eigen::Index K = 97;
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(Fixed(n, K, 0.29)).householderQ() *
+    DenseMatrix::Identity(n, K);
+  DenseMatrix A = Fixed(n, 12, 0.61);
+  const double before = A.norm();
+  const double largest = A.cwiseAbs().maxCoeff();
+  SubtractProduct(A, Q, TransposeProduct(Q, A));
+  const double left = (Q.transpose() * A).cwiseAbs().maxCoeff();
+  CheckBelow(left, 1e-12 * largest, "max |Q^T (A - Q Q^T A)|");
+  const DenseMatrix once = A;
+  SubtractProduct(A, Q, TransposeProduct(Q, A));
+  CheckBelow((A - once).cwiseAbs().maxCoeff(), 1e-12 * largest, "the projection is idempotent");
+  Check(A.norm() > 0.5 * before, "the block keeps most of its norm (it is not inside span(Q))");
+}
+
+const Case Cases[] = {
+  { "MatchGeneralProducts", MatchGeneralProducts },
+  { "ProjectionOrthogonal", ProjectionOrthogonal },
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return RunCases(argc, argv, Cases);
+}
