@@ -332,4 +332,71 @@ void SubtractProduct(Eigen::Ref<DenseMatrix> A,
       { A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C; });
   }
 }
+//------------------------------------------------------------------------------
+void SymmetricSparseProduct(const SparseMatrix& A,
+  const Eigen::Ref<const DenseMatrix>& X,
+  Eigen::Ref<DenseMatrix> out)
+{
+  constexpr int Width = NarrowBlockWidth;
+  const Eigen::Index n = A.rows();
+  const int parts = BlockThreads(n);
+  if (X.cols() < 8 || parts == 1 || !A.isCompressed())
+  {
+    out.noalias() = A * X;
+    return;
+  }
+  // Rows of the current 16 columns of X; where fewer are left, the lanes beyond them keep
+  // earlier values, which only reach lanes that are not written out.
+  Rows<Width> rows(static_cast<std::size_t>(n), Row<Width>::Zero());
+  const int* start = A.outerIndexPtr();
+  const int* index = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+  for (Eigen::Index c0 = 0; c0 < X.cols(); c0 += Width)
+  {
+    const Eigen::Index w = std::min<Eigen::Index>(Width, X.cols() - c0);
+    const auto columns = X.middleCols(c0, w);
+    ForEachRowRange(n,
+      parts,
+      [&](int, Eigen::Index first, Eigen::Index count)
+      {
+        for (Eigen::Index j = 0; j < w; ++j)
+        {
+          const double* column = columns.data() + j * columns.outerStride();
+          for (Eigen::Index i = first; i < first + count; ++i)
+          {
+            rows[static_cast<std::size_t>(i)][j] = column[i];
+          }
+        }
+      });
+    ForEachRowRange(n,
+      parts,
+      [&](int, Eigen::Index first, Eigen::Index count)
+      {
+        // A few hundred result rows at a time, then written out column by column.
+        constexpr Eigen::Index Chunk = 256;
+        Rows<Width> result(static_cast<std::size_t>(Chunk));
+        for (Eigen::Index r = first; r < first + count; r += Chunk)
+        {
+          const Eigen::Index h = std::min(Chunk, first + count - r);
+          for (Eigen::Index t = 0; t < h; ++t)
+          {
+            Row<Width> sum = Row<Width>::Zero();
+            for (int p = start[r + t]; p < start[r + t + 1]; ++p)
+            {
+              sum += value[p] * rows[static_cast<std::size_t>(index[p])];
+            }
+            result[static_cast<std::size_t>(t)] = sum;
+          }
+          for (Eigen::Index j = 0; j < w; ++j)
+          {
+            double* column = out.data() + (c0 + j) * out.outerStride() + r;
+            for (Eigen::Index t = 0; t < h; ++t)
+            {
+              column[t] = result[static_cast<std::size_t>(t)][j];
+            }
+          }
+        }
+      });
+  }
+}
 } // namespace spectral

@@ -655,7 +655,8 @@ Band RunBlockBand(const ShiftedFactor& factor,
     // c = coupling y, so its residual for the pencil is L x - lambda M x = -(L - sigma M) Q c / theta
     // with lambda = sigma + 1/theta: cheap through the Gram matrix of (L - sigma M) Q.
     const DenseMatrix coupling = T.block(applied, 0, b, applied) * ritz.eigenvectors();
-    const DenseMatrix Z = factor.ShiftedMatrix() * V.middleCols(applied, b);
+    DenseMatrix Z(n, b);
+    SymmetricSparseProduct(factor.ShiftedMatrix(), V.middleCols(applied, b), Z);
     const DenseMatrix residualGram = Z.transpose() * (inverseMass.asDiagonal() * Z);
     double reference = lambdaReference;
     if (!(reference > 0.0))
@@ -740,7 +741,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
       MultiplyInPlace(V.leftCols(applied), Y);
       auto X = V.leftCols(converged);
       auto AX = Workspace::Columns(work.Image, n, converged);
-      AX.noalias() = factor.ShiftedMatrix() * X;
+      SymmetricSparseProduct(factor.ShiftedMatrix(), X, AX);
       DenseMatrix MX; // M X; empty for the identity
       if (!M.Identity)
       {
@@ -788,7 +789,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
         stats.OperatorApplications += converged;
         stats.Seconds.Solve += SecondsSince(start);
         start = Clock::now();
-        AX.noalias() = factor.ShiftedMatrix() * X;
+        SymmetricSparseProduct(factor.ShiftedMatrix(), X, AX);
         if (!M.Identity)
         {
           MX = M.Matrix * X;
@@ -898,7 +899,7 @@ void Merge(Accepted& accepted,
 
   DenseMatrix G = M.Identity ? TransposeProduct(Y, Y) : TransposeProduct(Y, M.Matrix * Y);
   auto LY = Workspace::Columns(work.Image, Y.rows(), p);
-  LY.noalias() = L * Y;
+  SymmetricSparseProduct(L, Y, LY);
   DenseMatrix S = TransposeProduct(Y, LY);
   G = 0.5 * (G + G.transpose()).eval();
   S = 0.5 * (S + S.transpose()).eval();

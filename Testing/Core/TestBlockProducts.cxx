@@ -2,14 +2,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Properties of the narrow block products (Filters/Spectral/BlockProducts.h): they equal the
 // general products B^T A and A - B C for every width, for bases that are the leading columns of a
-// larger matrix, on one thread and on two; and projecting a block out of an orthonormal basis
-// leaves it orthogonal to the basis.
+// larger matrix, on one thread and on two; projecting a block out of an orthonormal basis
+// leaves it orthogonal to the basis; and the symmetric sparse product equals Eigen's.
 #include "BlockProducts.h"
 #include "Checks.h"
 
 #include <Eigen/Dense>
 
+#include <Eigen/Sparse>
+
+#include <cmath>
 #include <string>
+#include <vector>
 
 using namespace spectral;
 using namespace spectral::testing;
@@ -88,9 +92,68 @@ void ProjectionOrthogonal()
   Check(A.norm() > 0.5 * before, "the block keeps most of its norm (it is not inside span(Q))");
 }
 
+//------------------------------------------------------------------------------
+/// A fixed symmetric n x n sparse matrix with both triangles stored: a ring of neighbours at
+/// distances 1, 7 and 97 (so that rows reach far-apart rows) and a diagonal.
+SparseMatrix SymmetricPattern(Eigen::Index n)
+{
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 6.0 + std::sin(0.3 * i));
+    for (const Eigen::Index d : { Eigen::Index(1), Eigen::Index(7), Eigen::Index(97) })
+    {
+      const Eigen::Index j = (i + d) % n;
+      const double v = -0.5 - 0.4 * std::cos(0.7 * static_cast<double>(i + j));
+      entries.emplace_back(static_cast<int>(i), static_cast<int>(j), v);
+      entries.emplace_back(static_cast<int>(j), static_cast<int>(i), v);
+    }
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+//------------------------------------------------------------------------------
+void SymmetricProductMatches()
+{
+  // One thread (n < 8192) and two; column counts below the kernel's 8, at 8 and across several
+  // blocks of 16 with a remainder; X and the result as middle columns of wider matrices (their
+  // strides); and an uncompressed A (Eigen's product).
+  for (const Eigen::Index n : { Eigen::Index(5003), Eigen::Index(20011) })
+  {
+    SparseMatrix A = SymmetricPattern(n);
+    Check(SparseMatrix(A - SparseMatrix(A.transpose())).norm() == 0.0,
+      "n = " + std::to_string(n) + ": the test matrix is symmetric");
+    const DenseMatrix storage = Fixed(n, 45, 0.43);
+    double worst = 0.0;
+    for (const Eigen::Index k : { 3, 8, 12, 16, 17, 40 })
+    {
+      const auto X = storage.middleCols(2, k);
+      DenseMatrix wide = DenseMatrix::Constant(n, k + 3, 7.0);
+      auto out = wide.middleCols(1, k);
+      SymmetricSparseProduct(A, X, out);
+      const DenseMatrix expected = A * X;
+      worst =
+        std::max(worst, (out - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff());
+      Check(wide.col(0).cwiseEqual(7.0).all() && wide.rightCols(2).cwiseEqual(7.0).all(),
+        "n = " + std::to_string(n) + ", k = " + std::to_string(k) +
+          ": the columns beside the result are untouched");
+    }
+    CheckBelow(worst, 1e-15, "n = " + std::to_string(n) + ": max |A X - Eigen's A X| / max |A X|");
+    A.uncompress();
+    DenseMatrix out(n, 12);
+    SymmetricSparseProduct(A, storage.leftCols(12), out);
+    CheckBelow((out - A * storage.leftCols(12)).cwiseAbs().maxCoeff(),
+      0.0,
+      "n = " + std::to_string(n) + ": uncompressed A");
+  }
+}
+
 const Case Cases[] = {
   { "MatchGeneralProducts", MatchGeneralProducts },
   { "ProjectionOrthogonal", ProjectionOrthogonal },
+  { "SymmetricProductMatches", SymmetricProductMatches },
 };
 } // namespace
 
