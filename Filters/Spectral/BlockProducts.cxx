@@ -35,6 +35,17 @@ constexpr Eigen::Index ChunkRows = 2048;
  */
 constexpr Eigen::Index KernelColumns = 96;
 
+/// The padded row width of the kernels for K columns of B and w of A: 4, 8 or 16, or 0 where
+/// Eigen's product does better (K < KernelColumns) or A is too wide.
+int KernelWidth(Eigen::Index K, Eigen::Index w)
+{
+  if (K < KernelColumns || w > NarrowBlockWidth)
+  {
+    return 0;
+  }
+  return w <= 4 ? 4 : (w <= 8 ? 8 : NarrowBlockWidth);
+}
+
 /**
  * Columns of B handled together: each holds Width / (register width) accumulators, and the row
  * of the narrow block loaded once serves all of them. Eight fill the 32 vector registers of
@@ -46,20 +57,31 @@ constexpr int Group = 8;
 constexpr int Group = 3;
 #endif
 
-/// Rows [first, first + h) of A into the first A.cols() entries of `rows` (their padding stays
-/// as it is: zero).
+/// The rows of `source` into the first source.cols() entries of rows[0], rows[1], ... (the
+/// entries beyond them are left as they are).
 template<int Width>
-void CopyIn(const Eigen::Ref<const DenseMatrix>& A,
-  Eigen::Index first,
-  Eigen::Index h,
-  Rows<Width>& rows)
+void CopyIn(const Eigen::Ref<const DenseMatrix>& source, Row<Width>* rows)
 {
-  for (Eigen::Index j = 0; j < A.cols(); ++j)
+  for (Eigen::Index j = 0; j < source.cols(); ++j)
   {
-    const double* column = A.data() + j * A.outerStride() + first;
-    for (Eigen::Index i = 0; i < h; ++i)
+    const double* column = source.data() + j * source.outerStride();
+    for (Eigen::Index i = 0; i < source.rows(); ++i)
     {
-      rows[static_cast<std::size_t>(i)][j] = column[i];
+      rows[i][j] = column[i];
+    }
+  }
+}
+
+/// The first target.cols() entries of rows[0], rows[1], ... into the rows of `target`.
+template<int Width>
+void CopyOut(const Row<Width>* rows, Eigen::Ref<DenseMatrix> target)
+{
+  for (Eigen::Index j = 0; j < target.cols(); ++j)
+  {
+    double* column = target.data() + j * target.outerStride();
+    for (Eigen::Index i = 0; i < target.rows(); ++i)
+    {
+      column[i] = rows[i][j];
     }
   }
 }
@@ -162,7 +184,7 @@ void ForEachChunk(const Eigen::Ref<const DenseMatrix>& A,
   for (Eigen::Index c0 = first; c0 < first + count; c0 += ChunkRows)
   {
     const Eigen::Index h = std::min(ChunkRows, first + count - c0);
-    CopyIn<Width>(A, c0, h, rows);
+    CopyIn<Width>(A.middleRows(c0, h), rows.data());
     work(rows, c0, h);
   }
 }
@@ -210,14 +232,7 @@ void SubtractRange(Eigen::Ref<DenseMatrix> A,
           SubtractColumns<Width, decltype(group)::value>(
             B.data() + k * ldb + c0, ldb, &C[static_cast<std::size_t>(k)], rows, h);
         });
-      for (Eigen::Index j = 0; j < A.cols(); ++j)
-      {
-        double* column = A.data() + j * A.outerStride() + c0;
-        for (Eigen::Index i = 0; i < h; ++i)
-        {
-          column[i] = rows[static_cast<std::size_t>(i)][j];
-        }
-      }
+      CopyOut<Width>(rows.data(), A.middleRows(c0, h));
     });
 }
 
@@ -280,17 +295,16 @@ DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B,
   {
     return DenseMatrix::Zero(B.cols(), w);
   }
-  if (B.cols() >= KernelColumns && w <= 4)
+  switch (KernelWidth(B.cols(), w))
   {
-    return TransposeProductOfWidth<4>(B, A, parts);
-  }
-  if (B.cols() >= KernelColumns && w <= 8)
-  {
-    return TransposeProductOfWidth<8>(B, A, parts);
-  }
-  if (B.cols() >= KernelColumns && w <= NarrowBlockWidth)
-  {
-    return TransposeProductOfWidth<NarrowBlockWidth>(B, A, parts);
+    case 4:
+      return TransposeProductOfWidth<4>(B, A, parts);
+    case 8:
+      return TransposeProductOfWidth<8>(B, A, parts);
+    case NarrowBlockWidth:
+      return TransposeProductOfWidth<NarrowBlockWidth>(B, A, parts);
+    default:
+      break;
   }
   DenseMatrix partial[2] = { DenseMatrix::Zero(B.cols(), w), DenseMatrix::Zero(B.cols(), w) };
   ForEachRowRange(A.rows(),
@@ -312,26 +326,26 @@ void SubtractProduct(Eigen::Ref<DenseMatrix> A,
   {
     return;
   }
-  if (B.cols() >= KernelColumns && w <= 4)
+  switch (KernelWidth(B.cols(), w))
   {
-    SubtractProductOfWidth<4>(A, B, C, parts);
-  }
-  else if (B.cols() >= KernelColumns && w <= 8)
-  {
-    SubtractProductOfWidth<8>(A, B, C, parts);
-  }
-  else if (B.cols() >= KernelColumns && w <= NarrowBlockWidth)
-  {
-    SubtractProductOfWidth<NarrowBlockWidth>(A, B, C, parts);
-  }
-  else
-  {
-    ForEachRowRange(A.rows(),
-      parts,
-      [&](int, Eigen::Index first, Eigen::Index count)
-      { A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C; });
+    case 4:
+      SubtractProductOfWidth<4>(A, B, C, parts);
+      break;
+    case 8:
+      SubtractProductOfWidth<8>(A, B, C, parts);
+      break;
+    case NarrowBlockWidth:
+      SubtractProductOfWidth<NarrowBlockWidth>(A, B, C, parts);
+      break;
+    default:
+      ForEachRowRange(A.rows(),
+        parts,
+        [&](int, Eigen::Index first, Eigen::Index count)
+        { A.middleRows(first, count).noalias() -= B.middleRows(first, count) * C; });
+      break;
   }
 }
+
 //------------------------------------------------------------------------------
 void SymmetricSparseProduct(const SparseMatrix& A,
   const Eigen::Ref<const DenseMatrix>& X,
@@ -354,20 +368,10 @@ void SymmetricSparseProduct(const SparseMatrix& A,
   for (Eigen::Index c0 = 0; c0 < X.cols(); c0 += Width)
   {
     const Eigen::Index w = std::min<Eigen::Index>(Width, X.cols() - c0);
-    const auto columns = X.middleCols(c0, w);
     ForEachRowRange(n,
       parts,
       [&](int, Eigen::Index first, Eigen::Index count)
-      {
-        for (Eigen::Index j = 0; j < w; ++j)
-        {
-          const double* column = columns.data() + j * columns.outerStride();
-          for (Eigen::Index i = first; i < first + count; ++i)
-          {
-            rows[static_cast<std::size_t>(i)][j] = column[i];
-          }
-        }
-      });
+      { CopyIn<Width>(X.block(first, c0, count, w), rows.data() + first); });
     ForEachRowRange(n,
       parts,
       [&](int, Eigen::Index first, Eigen::Index count)
@@ -387,14 +391,7 @@ void SymmetricSparseProduct(const SparseMatrix& A,
             }
             result[static_cast<std::size_t>(t)] = sum;
           }
-          for (Eigen::Index j = 0; j < w; ++j)
-          {
-            double* column = out.data() + (c0 + j) * out.outerStride() + r;
-            for (Eigen::Index t = 0; t < h; ++t)
-            {
-              column[t] = result[static_cast<std::size_t>(t)][j];
-            }
-          }
+          CopyOut<Width>(result.data(), out.block(r, c0, h, w));
         }
       });
   }
