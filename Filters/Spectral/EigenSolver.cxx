@@ -321,23 +321,48 @@ Band RunBand(const ShiftInvertOp& op,
 /**
  * X.leftCols(Z.cols()) = X.leftCols(Z.rows()) Z in place (Z.cols() <= Z.rows()), a few hundred
  * rows at a time through a small buffer: rotating or compressing a tall basis needs no second
- * n-row matrix.
+ * n-row matrix. With `gram`, also its Gram matrix Y^T Y of the result Y, summed while the rows
+ * are in cache (no second pass over Y).
  */
-void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z)
+void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z, DenseMatrix* gram = nullptr)
 {
   const Eigen::Index chunk = 256;
+  DenseMatrix partial[2];
   ForEachRowRange(X.rows(),
     BlockThreads(X.rows()),
-    [&](int, Eigen::Index first, Eigen::Index count)
+    [&](int part, Eigen::Index first, Eigen::Index count)
     {
       DenseMatrix rows(std::min(chunk, count), Z.cols());
+      if (gram)
+      {
+        partial[part] = DenseMatrix::Zero(Z.cols(), Z.cols());
+      }
       for (Eigen::Index r = first; r < first + count; r += chunk)
       {
         const Eigen::Index h = std::min(chunk, first + count - r);
         rows.topRows(h).noalias() = X.block(r, 0, h, Z.rows()) * Z;
         X.block(r, 0, h, Z.cols()) = rows.topRows(h);
+        if (gram)
+        {
+          partial[part].noalias() += rows.topRows(h).transpose() * rows.topRows(h);
+        }
       }
     });
+  if (gram)
+  {
+    *gram = partial[1].size() ? (partial[0] + partial[1]).eval() : partial[0];
+  }
+}
+
+/// out = X Z for a tall X, rows on two threads; out does not overlap X.
+void MultiplyInto(Eigen::Ref<DenseMatrix> out,
+  const Eigen::Ref<const DenseMatrix>& X,
+  const DenseMatrix& Z)
+{
+  ForEachRowRange(X.rows(),
+    BlockThreads(X.rows()),
+    [&](int, Eigen::Index first, Eigen::Index count)
+    { out.middleRows(first, count).noalias() = X.middleRows(first, count) * Z; });
 }
 
 /// W -= B (B^T M W) for a tall n-row B; returns B^T M W.
@@ -360,27 +385,36 @@ Vector MassNorms(const DenseMatrix& W, const MassMatrix& M)
 }
 
 /**
- * M-orthonormalize the columns of W in place (two passes of SVQB: eigen-decomposition of the
- * Gram matrix) and return R with W_in = W_out R. Directions whose norm fell below `floor`
- * (the block is nearly inside the span of Basis) are replaced by random vectors M-orthogonal to
- * Basis and to the other columns; their rows of R are zero.
+ * M-orthonormalize the columns of W (two passes of SVQB: eigen-decomposition of the Gram matrix)
+ * and return R with W_in = W_out R. Directions whose norm fell below `floor` (the block is nearly
+ * inside the span of Basis) are replaced by random vectors M-orthogonal to Basis and to the other
+ * columns; their rows of R are zero.
+ * \param gram W^T M W if the caller has it, else empty.
+ * \param out where the result goes: W itself (null), or other columns (then W is left as
+ *        scratch). With the identity mass the second pass's Gram matrix is summed during the
+ *        first pass's product and the second product writes `out` directly: W is read three
+ *        times instead of five.
  */
 DenseMatrix Orthonormalize(DenseMatrix& W,
   const MassMatrix& M,
   const Eigen::Ref<const DenseMatrix>& Basis,
   double floor,
-  std::mt19937& generator)
+  std::mt19937& generator,
+  DenseMatrix gram = DenseMatrix(),
+  Eigen::Ref<DenseMatrix>* out = nullptr)
 {
   const Eigen::Index b = W.cols();
   DenseMatrix R = DenseMatrix::Identity(b, b);
+  bool written = false; // the result is in *out
   for (int pass = 0; pass < 2; ++pass)
   {
     DenseMatrix scratch;
-    DenseMatrix G = TransposeProduct(W, M.Times(W, scratch));
+    DenseMatrix G = gram.size() ? gram : TransposeProduct(W, M.Times(W, scratch));
+    gram.resize(0, 0);
     G = 0.5 * (G + G.transpose()).eval();
-    Eigen::SelfAdjointEigenSolver<DenseMatrix> gram(G);
-    const Vector& g = gram.eigenvalues();
-    const DenseMatrix& U = gram.eigenvectors();
+    Eigen::SelfAdjointEigenSolver<DenseMatrix> decomposition(G);
+    const Vector& g = decomposition.eigenvalues();
+    const DenseMatrix& U = decomposition.eigenvectors();
     DenseMatrix S = DenseMatrix::Zero(b, b);
     DenseMatrix Rpass = DenseMatrix::Zero(b, b);
     std::vector<Eigen::Index> deficient;
@@ -396,8 +430,14 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
         deficient.push_back(i);
       }
     }
-    MultiplyInPlace(W, S);
     R = (Rpass * R).eval();
+    if (deficient.empty() && pass == 1 && out)
+    {
+      MultiplyInto(*out, W, S);
+      written = true;
+      break;
+    }
+    MultiplyInPlace(W, S, deficient.empty() && pass == 0 && M.Identity ? &gram : nullptr);
     std::uniform_real_distribution<double> uniform(-0.5, 0.5);
     for (const Eigen::Index i : deficient)
     {
@@ -413,6 +453,10 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
       }
       W.col(i) = v / std::sqrt(v.dot(M.Matrix * v));
     }
+  }
+  if (out && !written)
+  {
+    *out = W;
   }
   return R;
 }
@@ -610,22 +654,26 @@ Band RunBlockBand(const ShiftedFactor& factor,
       DenseMatrix C = DenseMatrix::Zero(filled, b);
       C.bottomRows(filled - local) = Project(W, V.middleCols(local, filled - local), M);
       Vector before = MassNorms(W, M);
+      DenseMatrix gram; // W^T M W after the last pass, the Gram matrix Orthonormalize starts from
       for (int pass = 0; pass < 3; ++pass)
       {
         C += Project(W, basis, M);
-        const Vector after = MassNorms(W, M);
+        DenseMatrix scratch;
+        gram = TransposeProduct(W, M.Times(W, scratch));
+        const Vector after = gram.diagonal();
         if ((after.array() >= 0.5 * before.array()).all())
         {
           break;
         }
         before = after;
       }
-      const DenseMatrix R = Orthonormalize(W, M, basis, 1e-26 * reference, generator);
+      Eigen::Ref<DenseMatrix> next = V.middleCols(filled, b);
+      const DenseMatrix R =
+        Orthonormalize(W, M, basis, 1e-26 * reference, generator, std::move(gram), &next);
       T.block(0, applied, filled, b) = C;
       T.block(applied, 0, b, filled) = C.transpose();
       T.block(filled, applied, b, b) = R;
       T.block(applied, filled, b, b) = R.transpose();
-      V.middleCols(filled, b) = W;
       applied = filled;
       filled += b;
       stats.Seconds.Orthogonalization += SecondsSince(start);
