@@ -374,6 +374,13 @@ DenseMatrix Project(DenseMatrix& W, const Eigen::Ref<const DenseMatrix>& B, cons
   return C;
 }
 
+/// The Gram matrix W^T M W.
+DenseMatrix MassGram(const DenseMatrix& W, const MassMatrix& M)
+{
+  DenseMatrix scratch;
+  return TransposeProduct(W, M.Times(W, scratch));
+}
+
 /// The squared M-norm of every column of W.
 Vector MassNorms(const DenseMatrix& W, const MassMatrix& M)
 {
@@ -405,11 +412,9 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
 {
   const Eigen::Index b = W.cols();
   DenseMatrix R = DenseMatrix::Identity(b, b);
-  bool written = false; // the result is in *out
   for (int pass = 0; pass < 2; ++pass)
   {
-    DenseMatrix scratch;
-    DenseMatrix G = gram.size() ? gram : TransposeProduct(W, M.Times(W, scratch));
+    DenseMatrix G = gram.size() ? gram : MassGram(W, M);
     gram.resize(0, 0);
     G = 0.5 * (G + G.transpose()).eval();
     Eigen::SelfAdjointEigenSolver<DenseMatrix> decomposition(G);
@@ -434,8 +439,7 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
     if (deficient.empty() && pass == 1 && out)
     {
       MultiplyInto(*out, W, S);
-      written = true;
-      break;
+      return R;
     }
     MultiplyInPlace(W, S, deficient.empty() && pass == 0 && M.Identity ? &gram : nullptr);
     std::uniform_real_distribution<double> uniform(-0.5, 0.5);
@@ -454,7 +458,7 @@ DenseMatrix Orthonormalize(DenseMatrix& W,
       W.col(i) = v / std::sqrt(v.dot(M.Matrix * v));
     }
   }
-  if (out && !written)
+  if (out)
   {
     *out = W;
   }
@@ -658,8 +662,7 @@ Band RunBlockBand(const ShiftedFactor& factor,
       for (int pass = 0; pass < 3; ++pass)
       {
         C += Project(W, basis, M);
-        DenseMatrix scratch;
-        gram = TransposeProduct(W, M.Times(W, scratch));
+        gram = MassGram(W, M);
         const Vector after = gram.diagonal();
         if ((after.array() >= 0.5 * before.array()).all())
         {
