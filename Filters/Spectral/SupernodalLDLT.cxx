@@ -94,18 +94,17 @@ void SubtractRows(double* base,
 }
 
 /**
- * x_k -= sum over i in [begin, end) of l[k * stride + i] * z_i for G consecutive columns k of a
- * supernode, where z_i is row rows[i] of the row-major block Y (width W) and x_k the row at
- * x + k * W. Each sum is split into P partial sums over interleaved rows: G * P independent
+ * x_q -= sum over i < count of l[q * stride + i] times row index[i] of Y (row-major, width W),
+ * for the G rows x_q at x + q * W: the backward update of G columns of a supernode from the rows
+ * below it. Each sum is split into P partial sums over interleaved rows: G * P independent
  * chains of multiply-adds, where one chain alone would wait for every multiply-add to finish.
  */
 template<int W, int G, int P>
 void GatherColumns(const double* Y,
-  const int* rows,
+  const int* index,
+  int count,
   const double* l,
   int stride,
-  int begin,
-  int end,
   double* x)
 {
   using Row = Eigen::Matrix<double, W, 1>;
@@ -118,21 +117,21 @@ void GatherColumns(const double* Y,
       a[k][p].setZero();
     }
   }
-  int i = begin;
-  for (; i + P <= end; i += P)
+  int i = 0;
+  for (; i + P <= count; i += P)
   {
     for (int p = 0; p < P; ++p)
     {
-      const Row z = ConstRowView(Y + static_cast<std::size_t>(rows[i + p]) * W);
+      const Row z = ConstRowView(Y + static_cast<std::size_t>(index[i + p]) * W);
       for (int k = 0; k < G; ++k)
       {
         a[k][p] += l[static_cast<std::size_t>(k) * stride + i + p] * z;
       }
     }
   }
-  for (; i < end; ++i)
+  for (; i < count; ++i)
   {
-    const Row z = ConstRowView(Y + static_cast<std::size_t>(rows[i]) * W);
+    const Row z = ConstRowView(Y + static_cast<std::size_t>(index[i]) * W);
     for (int k = 0; k < G; ++k)
     {
       a[k][0] += l[static_cast<std::size_t>(k) * stride + i] * z;
@@ -519,11 +518,15 @@ void SupernodalLDLT::SolveRows(double* Y) const
     valuesBack.Reached(L + static_cast<std::size_t>(c) * r);
     indicesBack.Reached(node.RowIndex + r);
     // The rows below: each read once for up to eight of the supernode's columns. Narrower
-    // groups split every sum over interleaved rows, so that eight sums are always under way.
+    // groups split every sum over interleaved rows, so that at least eight sums are under way.
     const auto gather = [&](auto group, auto phases, int j)
     {
-      GatherColumns<W, decltype(group)::value, decltype(phases)::value>(
-        Y, node.RowIndex, L + static_cast<std::size_t>(j) * r, r, c, r, row(node.First + j));
+      GatherColumns<W, decltype(group)::value, decltype(phases)::value>(Y,
+        node.RowIndex + c,
+        r - c,
+        L + static_cast<std::size_t>(j) * r + c,
+        r,
+        row(node.First + j));
     };
     using One = std::integral_constant<int, 1>;
     using Two = std::integral_constant<int, 2>;
