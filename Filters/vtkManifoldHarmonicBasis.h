@@ -171,7 +171,8 @@ public:
   /**
    * Number of eigenpairs the solver computes per band (per shift-invert Lanczos run). Small
    * bands keep each Lanczos basis small; large bands need fewer factorizations. 0 chooses
-   * automatically (about 100). Range [0, VTK_INT_MAX]. Default is 0.
+   * automatically: a single band for up to 120 harmonics, else bands of 100. Range
+   * [0, VTK_INT_MAX]. Default is 0.
    */
   vtkSetClampMacro(BandSize, int, 0, VTK_INT_MAX);
   vtkGetMacro(BandSize, int);

@@ -54,7 +54,8 @@ struct MemoryEstimate
 };
 
 /**
- * The band size the eigensolver uses when asked for 0 (automatic): m clamped to [50, 100].
+ * The band size the eigensolver uses when asked for 0 (automatic): one band of m + m / 4 + 10
+ * pairs while that is at most 160 (m <= 120), else bands of 100.
  * \param m Number of harmonics.
  * \param bandSize The requested band size; > 0 is returned as is.
  */

@@ -15,8 +15,10 @@ namespace
 //------------------------------------------------------------------------------
 void EstimateFormula()
 {
-  Check(EffectiveBandSize(10, 0) == 50, "automatic band size for m = 10: 50");
-  Check(EffectiveBandSize(100, 0) == 100, "automatic band size for m = 100: 100");
+  Check(EffectiveBandSize(10, 0) == 22, "automatic band size for m = 10: one band of 22");
+  Check(EffectiveBandSize(100, 0) == 135, "automatic band size for m = 100: one band of 135");
+  Check(EffectiveBandSize(120, 0) == 160, "automatic band size for m = 120: one band of 160");
+  Check(EffectiveBandSize(121, 0) == 100, "automatic band size for m = 121: bands of 100");
   Check(EffectiveBandSize(1000, 0) == 100, "automatic band size for m = 1000: 100");
   Check(EffectiveBandSize(1000, 30) == 30, "a band size set by hand is kept");
 
