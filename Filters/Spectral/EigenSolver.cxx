@@ -580,6 +580,8 @@ void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
  * is below Tolerance and its residual below ResidualTolerance / 20 (relaxed up to / 2 when the
  * iteration stalls), relative to max(|lambda|, lambdaReference) (lambdaReference <= 0: the
  * band's first non-zero eigenvalue).
+ * The monitor is polled for cancellation before every block and told the band's progress
+ * (its applications against those a band usually takes, at most 0.95) after every block.
  * \throws SolverFailure without convergence; ShiftTooClose (meanGap > 0: the spacing of the
  *         eigenvalues near sigma) when an eigenvalue lies within meanGap / 40 of sigma.
  */
@@ -623,6 +625,9 @@ Band RunBlockBand(const ShiftedFactor& factor,
   }
   Orthonormalize(W, M, V.leftCols(0), 0.0, generator);
   V.leftCols(b) = W;
+  // A band of nev pairs took 4.3 nev to 4.6 nev applications on the benchmark meshes: the
+  // progress within the band, up to 0.95 until it returns.
+  long long bandApplications = 0;
   Eigen::Index applied = 0; // columns whose image under Op is in T
   Eigen::Index filled = b;  // columns of V in use
   // The first block applied after a (re)start: its image couples to every column before it.
@@ -680,6 +685,8 @@ Band RunBlockBand(const ShiftedFactor& factor,
       applied = filled;
       filled += b;
       stats.Seconds.Orthogonalization += SecondsSince(start);
+      bandApplications += b;
+      monitor.Report(std::min(0.95, static_cast<double>(bandApplications) / (4.5 * nev)));
       if (restart == 0 && applied == 4 * b && meanGap > 0.0)
       {
         CheckShift(T.topLeftCorner(applied, applied), sigma, meanGap);
@@ -1038,6 +1045,13 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
   Accepted accepted;
   accepted.Vectors.resize(n, m + 2 * nev);
   Workspace work;
+  // Progress never moves backwards, whatever a band turns out to add.
+  double reported = 0.0;
+  const auto report = [&reported, &monitor](double fraction)
+  {
+    reported = std::max(reported, std::min(1.0, fraction));
+    monitor.Report(reported);
+  };
   int attempt = 0;
   int gaps = 0;
   int shortBands = 0;   // bands in a row that did not reach down to `complete`
@@ -1119,10 +1133,17 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
     }
     else
     {
+      // Within the band, progress moves across the pairs the band is expected to add.
+      const double done = std::min<double>(accepted.CountBelow(complete), m);
+      const double share = std::min<double>(0.8 * nev, m - done);
+      Monitor bandMonitor;
+      bandMonitor.Cancelled = monitor.Cancelled;
+      bandMonitor.Progress = [&report, done, share, m](double f)
+      { report((done + f * share) / m); };
       try
       {
         band = RunBlockBand(
-          factor, M, sigma, nev, attempt, reference, meanGap, options, monitor, work, result);
+          factor, M, sigma, nev, attempt, reference, meanGap, options, bandMonitor, work, result);
       }
       catch (const SolverFailure&)
       {
@@ -1224,7 +1245,7 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
       work);
     complete = std::max(complete, high);
     result.Seconds.RayleighRitz += SecondsSince(start);
-    monitor.Report(std::min(1.0, static_cast<double>(accepted.CountBelow(complete)) / m));
+    report(static_cast<double>(accepted.CountBelow(complete)) / m);
 
     // Weyl's law makes the eigenvalue density nearly constant: size the next band from this one.
     const double spread = band.Values[band.Values.size() - 1] - std::max(0.0, band.Values[0]);

@@ -423,6 +423,19 @@ void Cancellation()
   }
   Check(
     monotone, "progress rises from >= 0 to 1 in " + std::to_string(reports.size()) + " reports");
+  // m = 100 is a single band: progress must move within it, not jump from 0 to 1.
+  std::vector<double> inside;
+  for (const double f : reports)
+  {
+    if (f > 0.0 && f < 1.0 && (inside.empty() || f > inside.back()))
+    {
+      inside.push_back(f);
+    }
+  }
+  Check(inside.size() >= 10 && inside.back() >= 0.5,
+    std::to_string(inside.size()) +
+      " distinct progress values inside (0, 1) within the band, up to " +
+      (inside.empty() ? std::string("none") : std::to_string(inside.back())));
 }
 
 //------------------------------------------------------------------------------
