@@ -1020,7 +1020,8 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
   const Eigen::Index n = L.rows();
   const int m = options.NumberOfEigenpairs;
   const int bandSize = EffectiveBandSize(m, options.BandSize);
-  const int nev = static_cast<int>(std::min<Eigen::Index>(std::min(bandSize, m + m / 4 + 10), n / 2));
+  const int nev =
+    static_cast<int>(std::min<Eigen::Index>(std::min(bandSize, SingleBandSize(m)), n / 2));
 
   EigenResult result;
   Clock::time_point start = Clock::now();

@@ -54,7 +54,13 @@ struct MemoryEstimate
 };
 
 /**
- * The band size the eigensolver uses when asked for 0 (automatic): one band of m + m / 4 + 10
+ * The pairs a single band asks for when it must return all m: m + m / 4 + 10 (its edges are
+ * left to the final inertia check). No band asks for more.
+ */
+int SingleBandSize(int m);
+
+/**
+ * The band size the eigensolver uses when asked for 0 (automatic): one band of SingleBandSize(m)
  * pairs while that is at most 160 (m <= 120), else bands of 100.
  * \param m Number of harmonics.
  * \param bandSize The requested band size; > 0 is returned as is.
