@@ -134,6 +134,13 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
       coefficients.push_back({ Concatenate(signals[s].first.c_str(),
                                  vtkManifoldHarmonicTransform::CoefficientsSuffix()),
         basis.ForwardTransform(mass, signal.View()) });
+      if (!coefficients.back().Values.allFinite())
+      {
+        // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
+        return "The point-data array '" + signals[s].first +
+          "' holds values that are not finite (NaN or infinity) at points of the surface: "
+          "its transform is undefined. Deselect the array, or replace those values first.";
+      }
       self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
     }
   }

@@ -278,6 +278,15 @@ RowMatrix Forward(const Basis& H, const Vector& mass, const ConstRowView& X, int
       {
         const Eigen::Index rows = std::min(block, first + count - i);
         weighted = mass.segment(i, rows).asDiagonal() * X.middleRows(i, rows);
+        for (Eigen::Index r = 0; r < rows; ++r)
+        {
+          if (mass[i + r] == 0.0)
+          {
+            // Outside the surface (or another process's point): no term, whatever X holds
+            // there (0 * NaN would spoil every coefficient).
+            weighted.row(r).setZero();
+          }
+        }
         sum.noalias() += DoubleRows(H, i, rows, buffer).transpose() * weighted;
       }
     });

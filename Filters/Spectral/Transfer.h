@@ -52,7 +52,8 @@ using ConstRowView = Eigen::Map<const RowMatrix>;
  * sums are added at the end (so 1 and 2 threads differ by round-off only).
  *
  * \param H n by m basis, double or float, M-orthonormal for M = diag(mass) (H^T D H = I).
- * \param mass Lumped mass D, length n, the one the basis was computed with.
+ * \param mass Lumped mass D, length n, the one the basis was computed with. Points of zero mass
+ *        add nothing, even where X is not finite there (points used by no triangle).
  * \param X n by c signals (c >= 1 components per point).
  * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m).
  * \return m by c coefficients, row k for harmonic k, accumulated in double.

@@ -591,6 +591,43 @@ void FilterSignalKeepsOutsidePoints()
     "filter stage without the signal");
 }
 
+//------------------------------------------------------------------------------
+void OutsidePointsMayHoldNaN()
+{
+  // Points used by no triangle have zero mass: whatever they hold (NaN coordinates of an
+  // unused point) must not reach the coefficients, nor the filtered surface.
+  const Eigen::Index n = 40;
+  const Eigen::Index m = 4;
+  const RowMatrix H = RandomSignals(n, m, 14u);
+  const BasisView view(H.data(), n, m);
+  Vector mass = Vector::Ones(n);
+  mass[5] = 0.0;
+  mass[30] = 0.0;
+  const RowMatrix X = RandomSignals(n, 3, 15u);
+  RowMatrix bad = X;
+  bad.row(5).setConstant(std::numeric_limits<double>::quiet_NaN());
+  bad(30, 1) = std::numeric_limits<double>::infinity();
+  for (const int threads : { 1, 2 })
+  {
+    const RowMatrix C = ForwardTransform(view, mass, View(X), threads);
+    const RowMatrix D = ForwardTransform(view, mass, View(bad), threads);
+    Check(D.allFinite(), "coefficients finite with NaN and infinity at points of zero mass");
+    CheckBelow(MaxAbs(D - C), 0.0, "coefficients independent of the values at zero mass");
+    const Vector gains = Vector::Constant(m, 0.5);
+    const RowMatrix F = FilterSignal(view, mass, gains, View(D), View(bad), 0.2, threads);
+    const RowMatrix G = FilterSignal(view, mass, gains, View(C), View(X), 0.2, threads);
+    double inside = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+      if (mass[i] != 0.0)
+      {
+        inside = std::max(inside, (F.row(i) - G.row(i)).cwiseAbs().maxCoeff());
+      }
+    }
+    CheckBelow(inside, 0.0, "filtered surface points unaffected");
+  }
+}
+
 const Case Cases[] = {
   { "RoundTripFullBasis", RoundTripFullBasis },
   { "ReinjectionAndProjection", ReinjectionAndProjection },
@@ -606,6 +643,7 @@ const Case Cases[] = {
   { "FloatBasisMatchesDouble", FloatBasisMatchesDouble },
   { "ThreadsMatchOneThread", ThreadsMatchOneThread },
   { "FilterSignalKeepsOutsidePoints", FilterSignalKeepsOutsidePoints },
+  { "OutsidePointsMayHoldNaN", OutsidePointsMayHoldNaN },
 };
 } // namespace
 

@@ -36,6 +36,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -629,13 +630,52 @@ bool TestUnusedPoint()
   mesh->DeepCopy(sphere->GetOutput());
   mesh->GetPointData()->Initialize();
   const vtkIdType stray = mesh->GetPoints()->InsertNextPoint(5.0, 5.0, 5.0);
-  Pipeline pipeline(mesh, 20, {});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const vtkIdType broken = mesh->GetPoints()->InsertNextPoint(nan, nan, nan);
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  vtkNew<vtkDoubleArray> scalar;
+  scalar->SetName("S");
+  scalar->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    scalar->SetValue(i, i == broken ? nan : std::sin(0.1 * static_cast<double>(i)));
+  }
+  mesh->GetPointData()->AddArray(scalar);
+  Pipeline pipeline(mesh, 20, { "S" });
   pipeline.Filter->SetCutoff(2.0);
+  vtkPolyData* output = pipeline.Run();
   double p[3];
-  pipeline.Run()->GetPoint(stray, p);
+  output->GetPoint(stray, p);
   std::cout << "Unused point after a low-pass: (" << p[0] << ", " << p[1] << ", " << p[2] << ")"
             << std::endl;
-  return Check(p[0] == 5.0 && p[1] == 5.0 && p[2] == 5.0, "the unused point moved");
+  bool ok = Check(p[0] == 5.0 && p[1] == 5.0 && p[2] == 5.0, "the unused point moved");
+  // NaN at a point used by no triangle (coordinates and S) stays there.
+  bool finite = true;
+  vtkDataArray* filtered = output->GetPointData()->GetArray("S_Filtered");
+  ok &= Check(filtered != nullptr, "S_Filtered missing");
+  for (vtkIdType i = 0; filtered && i < n; ++i)
+  {
+    output->GetPoint(i, p);
+    finite &= i == broken ||
+      (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) &&
+        std::isfinite(filtered->GetComponent(i, 0)));
+  }
+  ok &= Check(finite, "NaN at an unused point spread to the surface");
+
+  // NaN at a point of the surface: the transform of that array is undefined, an error says so.
+  scalar->SetValue(0, nan);
+  scalar->Modified();
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkTest::ErrorObserver> executiveErrors;
+  pipeline.Transform->AddObserver(vtkCommand::ErrorEvent, errors);
+  pipeline.Transform->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  pipeline.Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  pipeline.Run();
+  const std::string message = errors->GetErrorMessage();
+  ok &= Check(errors->GetError() && message.find("'S'") != std::string::npos &&
+      message.find("not finite") != std::string::npos,
+    "no error naming the array with NaN on the surface");
+  return ok;
 }
 
 //------------------------------------------------------------------------------
