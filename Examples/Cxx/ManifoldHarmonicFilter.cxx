@@ -5,7 +5,7 @@
 //   ManifoldHarmonicFilter input.(ply|obj|stl|vtp) output.vtp [options]
 //     --harmonics m     number of harmonics (default 100)
 //     --kind k          lowpass, highpass, bandpass, bandstop, enhancement, exaggeration, heat,
-//                       custom (default lowpass)
+//                       custom: a ramp from gain 1 at 0 to 0 at the cutoff (default lowpass)
 //     --cutoff w        cutoff frequency (default: half the highest computed frequency)
 //     --upper w         upper band edge (default: 2 x cutoff)
 //     --gain g          gain of enhancement and exaggeration (default 2)
@@ -16,6 +16,7 @@
 // coefficients of the points. Run by CTest on Testing/Data/bunny.ply.
 
 #include "vtkDataArray.h"
+#include "vtkErrorCode.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkManifoldHarmonicBasis.h"
@@ -46,6 +47,7 @@ struct Options
   std::string Input;
   std::string Output;
   int Harmonics = 100;
+  std::string KindName = "lowpass";
   int Kind = vtkSpectralFilter::LOW_PASS;
   double Cutoff = -1.0; // < 0: half the highest computed frequency
   double Upper = -1.0;  // < 0: twice the cutoff
@@ -98,6 +100,7 @@ bool Parse(int argc, char* argv[], Options& options)
     }
     else if (option == "--kind" && kinds.count(value))
     {
+      options.KindName = value;
       options.Kind = kinds.at(value);
     }
     else if (option == "--cutoff")
@@ -228,12 +231,12 @@ int main(int argc, char* argv[])
   writer->SetFileName(options.Output.c_str());
   // Inline binary data: VTK before 9.3.1 cannot read appended data back with expat >= 2.6.
   writer->SetDataModeToBinary();
-  if (writer->Write() != 1)
+  if (writer->Write() != 1 || writer->GetErrorCode() != vtkErrorCode::NoError)
   {
     std::cerr << "Could not write " << options.Output << "\n";
     return EXIT_FAILURE;
   }
-  std::cout << "Filter kind " << options.Kind << ", cutoff " << cutoff << ": wrote "
+  std::cout << "Filter " << options.KindName << ", cutoff " << cutoff << ": wrote "
             << options.Output << "\n";
   return EXIT_SUCCESS;
 }

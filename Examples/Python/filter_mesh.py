@@ -8,7 +8,8 @@ Usage (pvpython, with the build tree's env.sh sourced):
         [--kind lowpass|highpass|bandpass|bandstop|enhancement|exaggeration|heat|custom]
         [--cutoff W] [--upper W] [--gain G] [--time T] [--no-reinject]
 
-The cutoff defaults to half the highest computed frequency. The Python twin of
+The cutoff defaults to half the highest computed frequency; custom is a ramp from gain 1 at 0
+to gain 0 at the cutoff. The Python twin of
 Examples/Cxx/ManifoldHarmonicFilter.cxx; run by CTest on Testing/Data/bunny.ply.
 """
 
@@ -42,11 +43,19 @@ KINDS = {
 }
 
 
+def positive_int(text):
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError("must be at least 1, not %d" % value)
+    return value
+
+
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("input", help="surface mesh: .ply, .obj, .stl or .vtp")
     parser.add_argument("output", help="filtered mesh, .vtp")
-    parser.add_argument("--harmonics", type=int, default=100, help="number of harmonics")
+    parser.add_argument("--harmonics", type=positive_int, default=100,
+                        help="number of harmonics (at least 1)")
     parser.add_argument("--kind", choices=sorted(KINDS), default="lowpass")
     parser.add_argument("--cutoff", type=float, default=None,
                         help="cutoff frequency (default: half the highest computed one)")
@@ -111,7 +120,7 @@ def main(argv):
     writer.SetFileName(args.output)
     # Inline binary data: VTK before 9.3.1 cannot read appended data back with expat >= 2.6.
     writer.SetDataModeToBinary()
-    if writer.Write() != 1:
+    if writer.Write() != 1 or writer.GetErrorCode() != 0:
         raise SystemExit("could not write %s" % args.output)
     print("filter %s, cutoff %g: wrote %s" % (args.kind, cutoff, args.output))
     return 0
