@@ -634,6 +634,17 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
 }
 
 //------------------------------------------------------------------------------
+void vtkManifoldHarmonicBasis::SetNumberOfHarmonics(int m)
+{
+  if (vtkManifoldHarmonicsArrays::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
+    m != this->NumberOfHarmonics)
+  {
+    this->NumberOfHarmonics = m;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -117,12 +117,12 @@ public:
 
   ///@{
   /**
-   * Number m of harmonics (eigenpairs) to compute, lowest frequencies first. The value is
-   * clamped to [1, VTK_INT_MAX] here, and at execution to the number of points that triangles
-   * use (with a warning). The cost grows with m: memory n x m, time roughly n x m^2.
-   * Default is 100.
+   * Number m of harmonics (eigenpairs) to compute, lowest frequencies first: at least 1 (a
+   * smaller value is refused with an error and the previous value kept), clamped at execution
+   * to the number of points that triangles use (with a warning). The cost grows with m: memory
+   * n x m, time roughly n x m^2. Default is 100.
    */
-  vtkSetClampMacro(NumberOfHarmonics, int, 1, VTK_INT_MAX);
+  virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);
   ///@}
 

@@ -2,12 +2,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkManifoldHarmonicSmoothing.h"
 
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
+#include "vtkManifoldHarmonicsArrays.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
@@ -46,7 +48,31 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   : NumberOfHarmonics(100)
   , CutoffFraction(0.5)
   , BasisPrecision(DOUBLE)
+  , Input(vtkSmartPointer<vtkPolyData>::New())
+  , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
+  , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
+  , Filter(vtkSmartPointer<vtkSpectralFilter>::New())
 {
+  // The three stages on a shallow copy, so that the internal pipeline does not touch the input.
+  this->Basis->SetInputData(this->Input);
+  this->Basis->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
+  this->Transform->SetInputConnection(this->Basis->GetOutputPort());
+  this->Filter->SetFilterKindToLowPass();
+  this->Filter->SetInputConnection(this->Transform->GetOutputPort());
+}
+
+//------------------------------------------------------------------------------
+vtkManifoldHarmonicSmoothing::~vtkManifoldHarmonicSmoothing() = default;
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::ForwardProgress(vtkObject*, unsigned long, void* data)
+{
+  this->UpdateProgress(0.9 * *static_cast<double*>(data));
+  if (this->GetAbortExecute())
+  {
+    this->Basis->SetAbortExecute(1);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -58,34 +84,33 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
-
-  // The three stages on a shallow copy, so that the internal pipeline does not touch the input.
-  // In a distributed run every process executes each stage (they are collective).
-  vtkNew<vtkPolyData> copy;
-  copy->ShallowCopy(input);
-  this->SetProgressText("Basis");
-  vtkNew<vtkManifoldHarmonicBasis> basis;
-  basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
-  basis->SetBasisPrecision(this->BasisPrecision);
-  basis->SetInputData(copy);
-  vtkNew<vtkManifoldHarmonicTransform> transform;
-  transform->SetInputConnection(basis->GetOutputPort());
-  transform->Update();
-  this->UpdateProgress(0.9);
-  if (this->GetAbortExecute())
+  // A new input (or the same one modified) recomputes the basis; a new cutoff alone does not.
+  // In a distributed run every process executes each stage (they are collective), and every
+  // process sees the same parameters and the same kind of input change.
+  if (input->GetMTime() != this->InputTime)
   {
+    this->Input->ShallowCopy(input);
+    this->InputTime = input->GetMTime();
+  }
+  this->SetProgressText("Basis");
+  this->Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
+  this->Basis->SetBasisPrecision(this->BasisPrecision);
+  // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
+  this->Basis->SetAbortExecute(this->GetAbortExecute());
+  this->Basis->Update();
+  if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
+  {
+    // The aborted basis is incomplete: the next execution computes it afresh.
+    this->Basis->Modified();
     return 1;
   }
-
+  this->Transform->Update();
+  this->UpdateProgress(0.9);
   this->SetProgressText("Spectral filter");
-  vtkNew<vtkSpectralFilter> filter;
-  filter->SetFilterKindToLowPass();
-  filter->SetCutoff(this->CutoffFraction * HighestFrequency(basis->GetOutput()));
-  filter->SetInputConnection(transform->GetOutputPort());
-  filter->Update();
-
+  this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
+  this->Filter->Update();
   output->ShallowCopy(input);
-  vtkPolyData* filtered = filter->GetOutput();
+  vtkPolyData* filtered = this->Filter->GetOutput();
   if (filtered->GetNumberOfPoints() != input->GetNumberOfPoints())
   {
     if (input->GetNumberOfPoints() == 0)
@@ -99,6 +124,17 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   output->SetPoints(filtered->GetPoints());
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::SetNumberOfHarmonics(int m)
+{
+  if (vtkManifoldHarmonicsArrays::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
+    m != this->NumberOfHarmonics)
+  {
+    this->NumberOfHarmonics = m;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

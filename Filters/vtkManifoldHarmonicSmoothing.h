@@ -28,8 +28,12 @@
  * - BasisPrecision (default DOUBLE): the precision of the internal basis; FLOAT halves its
  *   memory and changes the smoothed points by float round-off only.
  *
+ * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
+ * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
+ * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it.
+ *
  * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
- * BasisPrecision FLOAT) and an eigensolve.
+ * BasisPrecision FLOAT) and an eigensolve. The basis stays in memory with the filter.
  *
  * Test: Filters/Testing/Cxx/TestManifoldHarmonicSmoothing.cxx.
  *
@@ -41,6 +45,12 @@
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // For the internal pipeline
+
+class vtkManifoldHarmonicBasis;
+class vtkManifoldHarmonicTransform;
+class vtkPolyData;
+class vtkSpectralFilter;
 
 class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing : public vtkPolyDataAlgorithm
 {
@@ -56,10 +66,11 @@ public:
 
   ///@{
   /**
-   * Number m of harmonics to compute (lowest frequencies first); clamped to the number of
-   * points triangles use. Range [1, VTK_INT_MAX]. Default is 100.
+   * Number m of harmonics to compute (lowest frequencies first): at least 1 (a smaller value is
+   * refused with an error and the previous value kept), clamped at execution to the number of
+   * points triangles use. Default is 100.
    */
-  vtkSetClampMacro(NumberOfHarmonics, int, 1, VTK_INT_MAX);
+  virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);
   ///@}
 
@@ -98,7 +109,7 @@ public:
 
 protected:
   vtkManifoldHarmonicSmoothing();
-  ~vtkManifoldHarmonicSmoothing() override = default;
+  ~vtkManifoldHarmonicSmoothing() override;
 
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
@@ -109,6 +120,16 @@ protected:
   int BasisPrecision;
 
 private:
+  /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
+  void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
+
+  // The internal pipeline, kept between executions so that a new cutoff reuses the basis.
+  vtkSmartPointer<vtkPolyData> Input; // shallow copy of the input, replaced when it changes
+  vtkMTimeType InputTime = 0;         // the input's MTime at that copy
+  vtkSmartPointer<vtkManifoldHarmonicBasis> Basis;
+  vtkSmartPointer<vtkManifoldHarmonicTransform> Transform;
+  vtkSmartPointer<vtkSpectralFilter> Filter;
+
   vtkManifoldHarmonicSmoothing(const vtkManifoldHarmonicSmoothing&) = delete;
   void operator=(const vtkManifoldHarmonicSmoothing&) = delete;
 };

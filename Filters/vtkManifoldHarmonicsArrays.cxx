@@ -6,6 +6,7 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkObject.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -250,5 +251,17 @@ vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
 std::string Concatenate(const char* name, const char* suffix)
 {
   return std::string(name ? name : "") + suffix;
+}
+//------------------------------------------------------------------------------
+bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
+{
+  if (requested < 1)
+  {
+    vtkErrorWithObjectMacro(self,
+      << "NumberOfHarmonics must be at least 1, not " << requested << "; it stays " << current
+      << ".");
+    return false;
+  }
+  return true;
 }
 } // namespace vtkManifoldHarmonicsArrays

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file vtkManifoldHarmonicsArrays.h
- * @brief Private helpers shared by vtkManifoldHarmonicTransform and vtkSpectralFilter.
+ * @brief Private helpers shared by the filters of the module.
  *
  * They find and check the arrays of vtkManifoldHarmonicBasis on a data set, view VTK arrays as
  * Eigen matrices (without a copy for vtkDoubleArray) and write Eigen matrices back into VTK
@@ -20,6 +20,7 @@
 
 class vtkDataArray;
 class vtkDoubleArray;
+class vtkObject;
 class vtkPolyData;
 
 namespace vtkManifoldHarmonicsArrays
@@ -97,6 +98,13 @@ vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
 
 /// `name` + `suffix`.
 std::string Concatenate(const char* name, const char* suffix);
+
+/**
+ * Whether `requested` may become the NumberOfHarmonics of `self` (vtkManifoldHarmonicBasis,
+ * vtkManifoldHarmonicSmoothing): at least 1. If not, an error of `self` says so and that the
+ * `current` value stays.
+ */
+bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

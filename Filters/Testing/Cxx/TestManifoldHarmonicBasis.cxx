@@ -389,6 +389,18 @@ bool TestClampAndEmpty()
   ok &= Check(emptyWarnings->GetWarning() && !emptyWarnings->GetError(), "empty input: warning");
   ok &= Check(
     passed && passed->GetNumberOfPoints() == 0 && !Harmonics(passed), "empty input passed through");
+
+  // Fewer than one harmonic: refused with an error, the previous value kept.
+  for (int m : { 0, -3 })
+  {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    basis->AddObserver(vtkCommand::ErrorEvent, errors);
+    basis->SetNumberOfHarmonics(25);
+    basis->SetNumberOfHarmonics(m);
+    ok &= Check(errors->CheckErrorMessage("at least 1") == 0 && basis->GetNumberOfHarmonics() == 25,
+      ("NumberOfHarmonics " + std::to_string(m) + " refused").c_str());
+  }
   return ok;
 }
 

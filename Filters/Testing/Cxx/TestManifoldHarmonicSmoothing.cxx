@@ -2,11 +2,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Checks of vtkManifoldHarmonicSmoothing: it equals basis + transform + low-pass spectral filter
 // with the cutoff CutoffFraction * omega_max, keeps the input arrays and cells, adds no basis
-// array and gives the same points with a float basis; and of the Spectrum output of
+// array, gives the same points with a float basis, keeps its basis when only the cutoff changes,
+// reports progress and honours an abort during the eigensolve; and of the Spectrum output of
 // vtkSpectralFilter: its columns and their values.
 
 #include "vtkManifoldHarmonicSmoothing.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkManifoldHarmonicBasis.h"
@@ -195,6 +198,89 @@ bool TestSpectrumTable(vtkPolyData* input)
     "high-pass gain 0 at omega 0 after a parameter change");
   return ok;
 }
+//------------------------------------------------------------------------------
+// Progress of the smoothing filter: how many reports fell strictly inside (0, 0.9), the part
+// that belongs to the eigensolve; optionally aborts at the first of them.
+struct ProgressLog
+{
+  int Inside = 0;
+  bool AbortAtFirst = false;
+
+  static void Callback(vtkObject* caller, unsigned long, void* clientData, void* callData)
+  {
+    auto* log = static_cast<ProgressLog*>(clientData);
+    const double progress = *static_cast<double*>(callData);
+    if (progress > 0.0 && progress < 0.9)
+    {
+      ++log->Inside;
+      if (log->AbortAtFirst)
+      {
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      }
+    }
+  }
+};
+
+//------------------------------------------------------------------------------
+// The basis is kept between executions: a new cutoff alone re-runs the filter stage only (no
+// eigensolve progress) and gives what a new filter gives; the eigensolve reports progress and
+// honours an abort, after which the next execution completes.
+bool TestReuseProgressAbort(vtkPolyData* input)
+{
+  ProgressLog log;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetCallback(&ProgressLog::Callback);
+  progress->SetClientData(&log);
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->AddObserver(vtkCommand::ProgressEvent, progress);
+  smoothing->SetInputData(input);
+  smoothing->SetNumberOfHarmonics(30);
+  smoothing->Update();
+  bool ok = Check(log.Inside >= 3,
+    "the eigensolve reports progress (" + std::to_string(log.Inside) + " reports inside (0, 0.9))");
+
+  log.Inside = 0;
+  smoothing->SetCutoffFraction(0.3);
+  smoothing->Update();
+  ok &= Check(log.Inside == 0, "a new cutoff alone recomputes the basis");
+  vtkNew<vtkManifoldHarmonicSmoothing> fresh;
+  fresh->SetInputData(input);
+  fresh->SetNumberOfHarmonics(30);
+  fresh->SetCutoffFraction(0.3);
+  fresh->Update();
+  ok &=
+    Check(MaxDistance(smoothing->GetOutput()->GetPoints(), fresh->GetOutput()->GetPoints()) < 1e-12,
+      "the reused basis gives what a new filter gives");
+
+  // A modified input, then more harmonics: the basis is recomputed.
+  log.Inside = 0;
+  input->Modified();
+  smoothing->Update();
+  ok &= Check(log.Inside > 0, "a modified input reuses the old basis");
+  log.Inside = 0;
+  smoothing->SetNumberOfHarmonics(40);
+  smoothing->Update();
+  ok &= Check(log.Inside > 0, "new NumberOfHarmonics reuses the old basis");
+
+  // Abort during the eigensolve: no output; the next execution computes the basis afresh.
+  log.Inside = 0;
+  log.AbortAtFirst = true;
+  smoothing->SetNumberOfHarmonics(35);
+  smoothing->Update();
+  ok &= Check(log.Inside == 1,
+    "the abort did not stop the eigensolve (" + std::to_string(log.Inside) + " reports)");
+  ok &= Check(smoothing->GetOutput()->GetNumberOfPoints() == 0, "an aborted run has no output");
+  // As for any VTK algorithm, the flag stays set until the caller clears it.
+  log.AbortAtFirst = false;
+  smoothing->AbortExecuteOff();
+  smoothing->Update();
+  fresh->SetNumberOfHarmonics(35);
+  fresh->Update();
+  ok &= Check(smoothing->GetOutput()->GetNumberOfPoints() == input->GetNumberOfPoints() &&
+      MaxDistance(smoothing->GetOutput()->GetPoints(), fresh->GetOutput()->GetPoints()) < 1e-12,
+    "the run after an abort completes");
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -204,5 +290,6 @@ int TestManifoldHarmonicSmoothing(int, char*[])
   bool ok = TestSameAsThreeStages(input);
   ok &= TestFloatBasis(input);
   ok &= TestSpectrumTable(input);
+  ok &= TestReuseProgressAbort(input);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -663,8 +663,6 @@ std::vector<Case> Corpus()
     Expect::Error,
     "refers to point 7",
     -1 });
-  cases.push_back({ "NumberOfHarmonics 0 (clamped to 1)", Sphere(16), 0, Expect::Valid, "", 1 });
-  cases.push_back({ "NumberOfHarmonics -5 (clamped to 1)", Sphere(16), -5, Expect::Valid, "", 1 });
   cases.push_back(
     { "NumberOfHarmonics = number of points", Sphere(8), 8 * 6 + 2, Expect::Valid, "", -1 });
   cases.push_back({ "NumberOfHarmonics > number of points",
