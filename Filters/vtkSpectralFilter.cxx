@@ -218,6 +218,21 @@ void FillSpectrum(const spectral::Vector& lambda,
   }
 }
 
+/// The rows of `values` scaled to unit length (rows of zero length stay zero).
+spectral::RowMatrix UnitRows(const spectral::RowMatrix& values)
+{
+  spectral::RowMatrix unit = values;
+  for (Eigen::Index i = 0; i < unit.rows(); ++i)
+  {
+    const double length = unit.row(i).norm();
+    if (length > 0.0)
+    {
+      unit.row(i) /= length;
+    }
+  }
+  return unit;
+}
+
 /// Store a filtered signal: new points, or a new or replacing point-data array. The
 /// coefficients of a replaced signal become those of the filtered one.
 void WriteSignal(const FilterJob& job,
@@ -230,8 +245,11 @@ void WriteSignal(const FilterJob& job,
   const std::string name =
     replace ? job.Name : Concatenate(job.Name.c_str(), vtkSpectralFilter::FilteredSuffix());
   const char* arrayName = job.IsPoints ? job.Source->GetName() : name.c_str();
-  vtkSmartPointer<vtkDataArray> filtered =
-    vtkManifoldHarmonicsArrays::NewArrayLike(job.Source, values, arrayName);
+  // Filtered normals that take the place of the active normals are normals again: unit length.
+  const bool activeNormals = !job.IsPoints && replace && values.cols() == 3 &&
+    output->GetPointData()->GetNormals() == job.Source;
+  vtkSmartPointer<vtkDataArray> filtered = vtkManifoldHarmonicsArrays::NewArrayLike(
+    job.Source, activeNormals ? UnitRows(values) : values, arrayName);
   if (job.IsPoints)
   {
     vtkNew<vtkPoints> points;

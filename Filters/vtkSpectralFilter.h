@@ -25,7 +25,12 @@
  * - `<Array>_Coefficients`: the filtered array is added as `<Array>_Filtered`, or replaces
  *   `<Array>` when ReplaceInput is on. Either way it has the type of the input array
  *   (NewInstance); integer arrays (e.g. unsigned char colours) are rounded and clamped to their
- *   type's range.
+ *   type's range. Filtered active normals that replace the input's (ReplaceInput on) are
+ *   scaled back to unit length; `<Normals>_Filtered` is left as the filter made it.
+ * - Like VTK's smoothing filters, the filter passes the other point data on unchanged: point
+ *   normals of the input no longer match filtered points unless they are filtered too (select
+ *   them on the transform, ReplaceInput on) or recomputed downstream (vtkPolyDataNormals,
+ *   "Generate Surface Normals" in ParaView).
  * The coefficients of a replaced signal are replaced by the filtered ones, F(omega_k) x~_k, so
  * that the output can feed another vtkSpectralFilter. Points that no triangle uses (zero mass)
  * keep their input values.

@@ -19,6 +19,7 @@
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkMassProperties.h"
+#include "vtkMath.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkPlatonicSolidSource.h"
@@ -469,6 +470,12 @@ bool TestColorsAndNormals()
       pd->GetNormals() == pd->GetArray("Normals") &&
       pd->GetNormals() != mesh->GetPointData()->GetNormals(),
     "ReplaceInput does not keep the filtered normals as the active normals");
+  double worst = 0.0;
+  for (vtkIdType i = 0; pd->GetNormals() && i < n; ++i)
+  {
+    worst = std::max(worst, std::abs(vtkMath::Norm(pd->GetNormals()->GetTuple3(i)) - 1.0));
+  }
+  ok &= Check(pd->GetNormals() && worst < 1e-6, "replaced active normals are not unit vectors");
   double range[2];
   colors->GetRange(range, -1);
   std::cout << "Enhanced colours (gain 3 above cutoff 3): magnitude range [" << range[0] << ", "
