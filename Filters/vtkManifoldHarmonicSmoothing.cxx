@@ -87,9 +87,10 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   // A new input (or the same one modified) recomputes the basis; a new cutoff alone does not.
   // In a distributed run every process executes each stage (they are collective), and every
   // process sees the same parameters and the same kind of input change.
-  if (input->GetMTime() != this->InputTime)
+  if (input != this->InputData.GetPointer() || input->GetMTime() != this->InputTime)
   {
     this->Input->ShallowCopy(input);
+    this->InputData = input;
     this->InputTime = input->GetMTime();
   }
   this->SetProgressText("Basis");

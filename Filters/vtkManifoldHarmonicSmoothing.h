@@ -19,7 +19,9 @@
  *
  * Input: a vtkPolyData with polygons (triangulated internally). Output: the input (cells, point
  * and cell data) with smoothed points of the same precision; no basis array is added. For the
- * harmonics, the spectrum or other transfer functions, use the three filters themselves.
+ * harmonics, the spectrum or other transfer functions, use the three filters themselves. As with
+ * VTK's smoothers, point normals of the input are passed on unchanged and describe the unsmoothed
+ * surface: recompute them downstream (vtkPolyDataNormals).
  *
  * Parameters:
  * - NumberOfHarmonics (default 100): the m harmonics computed; more harmonics keep finer details
@@ -46,6 +48,7 @@
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // For the internal pipeline
+#include "vtkWeakPointer.h"  // For the internal pipeline
 
 class vtkManifoldHarmonicBasis;
 class vtkManifoldHarmonicTransform;
@@ -124,8 +127,9 @@ private:
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
 
   // The internal pipeline, kept between executions so that a new cutoff reuses the basis.
-  vtkSmartPointer<vtkPolyData> Input; // shallow copy of the input, replaced when it changes
-  vtkMTimeType InputTime = 0;         // the input's MTime at that copy
+  vtkSmartPointer<vtkPolyData> Input;    // shallow copy of the input, replaced when it changes
+  vtkWeakPointer<vtkPolyData> InputData; // the input object of that copy
+  vtkMTimeType InputTime = 0;            // and its MTime then
   vtkSmartPointer<vtkManifoldHarmonicBasis> Basis;
   vtkSmartPointer<vtkManifoldHarmonicTransform> Transform;
   vtkSmartPointer<vtkSpectralFilter> Filter;

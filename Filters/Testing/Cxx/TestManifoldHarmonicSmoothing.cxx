@@ -9,9 +9,11 @@
 #include "vtkManifoldHarmonicSmoothing.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkMath.h"
@@ -261,6 +263,33 @@ bool TestReuseProgressAbort(vtkPolyData* input)
   smoothing->SetNumberOfHarmonics(40);
   smoothing->Update();
   ok &= Check(log.Inside > 0, "new NumberOfHarmonics reuses the old basis");
+
+  // Another input object whose MTime equals the last one's (both share points modified last):
+  // the basis of the first must not be reused.
+  vtkNew<vtkPolyData> half;
+  half->SetPoints(input->GetPoints());
+  vtkNew<vtkCellArray> polys;
+  for (vtkIdType c = 0; c < input->GetNumberOfPolys() / 2; ++c)
+  {
+    vtkNew<vtkIdList> ids;
+    input->GetCellPoints(c, ids);
+    polys->InsertNextCell(ids);
+  }
+  half->SetPolys(polys);
+  input->GetPoints()->Modified();
+  smoothing->Update();
+  ok &= Check(half->GetMTime() == input->GetMTime(), "set-up: equal MTimes");
+  smoothing->SetInputData(half);
+  smoothing->Update();
+  vtkNew<vtkManifoldHarmonicSmoothing> freshHalf;
+  freshHalf->SetInputData(half);
+  freshHalf->SetNumberOfHarmonics(40);
+  freshHalf->SetCutoffFraction(0.3);
+  freshHalf->Update();
+  ok &= Check(
+    MaxDistance(smoothing->GetOutput()->GetPoints(), freshHalf->GetOutput()->GetPoints()) < 1e-12,
+    "a new input object with the same MTime reuses the old basis");
+  smoothing->SetInputData(input);
 
   // Abort during the eigensolve: no output; the next execution computes the basis afresh.
   log.Inside = 0;
