@@ -207,8 +207,9 @@ int CheckPreparedMesh(vtkManifoldHarmonicBasis* self,
   if (prepared.UnusedPoints > 0)
   {
     vtkWarningWithObjectMacro(self,
-      << prepared.UnusedPoints << (prepared.UnusedPoints == 1 ? " point is" : " points are")
-      << " used by no triangle; their harmonics are 0.");
+      << prepared.UnusedPoints
+      << (prepared.UnusedPoints == 1 ? " point is used by no triangle; its harmonics are 0."
+                                     : " points are used by no triangle; their harmonics are 0."));
   }
   const int components = spectral::ConnectedComponents(prepared.Mesh);
   if (components > 1)

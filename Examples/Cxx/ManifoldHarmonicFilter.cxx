@@ -38,6 +38,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace
@@ -63,6 +64,21 @@ int Usage(const char* program)
                "bandpass|bandstop|enhancement|exaggeration|heat|custom] [--cutoff w] [--upper w] "
                "[--gain g] [--time t] [--no-reinject]\n";
   return EXIT_FAILURE;
+}
+
+/// `text` as a number of type T, all of it; false (with a message naming `option`) otherwise.
+template<typename T>
+bool ReadNumber(const std::string& option, const std::string& text, T& value)
+{
+  std::istringstream stream(text);
+  T parsed;
+  if (!(stream >> parsed) || !(stream >> std::ws).eof())
+  {
+    std::cerr << option << ": '" << text << "' is not a number\n";
+    return false;
+  }
+  value = parsed;
+  return true;
 }
 
 bool Parse(int argc, char* argv[], Options& options)
@@ -96,7 +112,15 @@ bool Parse(int argc, char* argv[], Options& options)
     const std::string value = argv[++i];
     if (option == "--harmonics")
     {
-      options.Harmonics = std::atoi(value.c_str());
+      if (!ReadNumber(option, value, options.Harmonics))
+      {
+        return false;
+      }
+      if (options.Harmonics < 1)
+      {
+        std::cerr << "--harmonics: at least 1, not " << options.Harmonics << "\n";
+        return false;
+      }
     }
     else if (option == "--kind" && kinds.count(value))
     {
@@ -105,26 +129,38 @@ bool Parse(int argc, char* argv[], Options& options)
     }
     else if (option == "--cutoff")
     {
-      options.Cutoff = std::atof(value.c_str());
+      if (!ReadNumber(option, value, options.Cutoff))
+      {
+        return false;
+      }
     }
     else if (option == "--upper")
     {
-      options.Upper = std::atof(value.c_str());
+      if (!ReadNumber(option, value, options.Upper))
+      {
+        return false;
+      }
     }
     else if (option == "--gain")
     {
-      options.Gain = std::atof(value.c_str());
+      if (!ReadNumber(option, value, options.Gain))
+      {
+        return false;
+      }
     }
     else if (option == "--time")
     {
-      options.Time = std::atof(value.c_str());
+      if (!ReadNumber(option, value, options.Time))
+      {
+        return false;
+      }
     }
     else
     {
       return false;
     }
   }
-  return options.Harmonics > 0;
+  return true;
 }
 
 /// Reads a surface with the reader that its extension names, or returns null.
