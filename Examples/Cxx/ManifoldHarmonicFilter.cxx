@@ -97,6 +97,13 @@ bool Parse(int argc, char* argv[], Options& options)
   }
   options.Input = argv[1];
   options.Output = argv[2];
+  if (options.Output.size() < 4 ||
+    options.Output.compare(options.Output.size() - 4, 4, ".vtp") != 0)
+  {
+    std::cerr << "The output is written as VTK XML polydata: name it .vtp, not " << options.Output
+              << "\n";
+    return false;
+  }
   for (int i = 3; i < argc; ++i)
   {
     const std::string option = argv[i];
@@ -272,7 +279,15 @@ int main(int argc, char* argv[])
     std::cerr << "Could not write " << options.Output << "\n";
     return EXIT_FAILURE;
   }
-  std::cout << "Filter " << options.KindName << ", cutoff " << cutoff << ": wrote "
-            << options.Output << "\n";
+  std::cout << "Filter " << options.KindName;
+  if (options.Kind == vtkSpectralFilter::HEAT_DIFFUSION)
+  {
+    std::cout << ", time " << options.Time;
+  }
+  else
+  {
+    std::cout << ", cutoff " << cutoff;
+  }
+  std::cout << ": wrote " << options.Output << "\n";
   return EXIT_SUCCESS;
 }

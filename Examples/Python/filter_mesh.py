@@ -80,6 +80,9 @@ def read_surface(file_name):
 
 def main(argv):
     args = parse_arguments(argv)
+    if not args.output.lower().endswith(".vtp"):
+        raise SystemExit("the output is written as VTK XML polydata: name it .vtp, not %s"
+                         % args.output)
     surface = read_surface(args.input)
     if surface.GetNumberOfPoints() == 0:
         raise SystemExit("no surface read from %s" % args.input)
@@ -122,7 +125,8 @@ def main(argv):
     writer.SetDataModeToBinary()
     if writer.Write() != 1 or writer.GetErrorCode() != 0:
         raise SystemExit("could not write %s" % args.output)
-    print("filter %s, cutoff %g: wrote %s" % (args.kind, cutoff, args.output))
+    setting = "time %g" % args.time if args.kind == "heat" else "cutoff %g" % cutoff
+    print("filter %s, %s: wrote %s" % (args.kind, setting, args.output))
     return 0
 
 
