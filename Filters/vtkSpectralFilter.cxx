@@ -218,6 +218,30 @@ void FillSpectrum(const spectral::Vector& lambda,
   }
 }
 
+/// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
+/// GetTimeRange) from the eigenvalues of the basis; left as they are without eigenvalues.
+void SliderRanges(const spectral::Vector& lambda, double frequency[2], double time[2])
+{
+  if (lambda.size() == 0)
+  {
+    return;
+  }
+  const double top = std::max(lambda[lambda.size() - 1], 0.0);
+  if (top > 0.0 && std::isfinite(top))
+  {
+    frequency[1] = std::sqrt(top);
+  }
+  // The lowest non-constant harmonic: the first eigenvalue clear of the zero ones.
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    if (lambda[k] > 1e-8 * top)
+    {
+      time[1] = 4.0 / lambda[k];
+      break;
+    }
+  }
+}
+
 /// The rows of `values` scaled to unit length (rows of zero length stay zero).
 spectral::RowMatrix UnitRows(const spectral::RowMatrix& values)
 {
@@ -442,6 +466,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   {
     const spectral::FilterParameters parameters = Parameters(this);
     const spectral::Vector lambda = basis.EigenvalueVector();
+    SliderRanges(lambda, this->FrequencyRange, this->TimeRange);
     const spectral::Vector gains = spectral::Gains(parameters, lambda);
     if (writeSpectrum)
     {

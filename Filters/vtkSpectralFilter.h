@@ -210,6 +210,20 @@ public:
    */
   static const char* GainColumnName();
 
+  ///@{
+  /**
+   * Slider ranges for the ParaView panel, from the basis of the last execution (results, not
+   * parameters): FrequencyRange = [0, omega_max], omega_max = sqrt(lambda_{m-1}) the highest
+   * computed frequency (for Cutoff and UpperCutoff), and TimeRange = [0, 4 / lambda_1], where
+   * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time). Before the
+   * first execution [0, 2] and [0, 1]: the panel takes its default values from these ranges
+   * (Cutoff at the middle, UpperCutoff at the top, Time at the bottom), which keeps them at 1, 2
+   * and 0.
+   */
+  vtkGetVector2Macro(FrequencyRange, double);
+  vtkGetVector2Macro(TimeRange, double);
+  ///@}
+
 protected:
   vtkSpectralFilter();
   ~vtkSpectralFilter() override;
@@ -238,6 +252,9 @@ protected:
   void UpdateEdgeSums(vtkPolyData* input);
   double EdgeSums[2] = { 0.0, 0.0 };
   vtkMTimeType EdgeSumsTime = 0;
+
+  double FrequencyRange[2] = { 0.0, 2.0 };
+  double TimeRange[2] = { 0.0, 1.0 };
 
 private:
   vtkSpectralFilter(const vtkSpectralFilter&) = delete;
