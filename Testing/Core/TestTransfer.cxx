@@ -10,6 +10,7 @@
 #include "Transfer.h"
 
 #include <atomic>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -557,35 +558,55 @@ void ThreadsMatchOneThread()
 }
 
 //------------------------------------------------------------------------------
+/// A random n x m "basis" with unit masses, except zero at the rows `outside` (points no
+/// triangle uses): the transform and filter stage do not care whether H is orthonormal.
+struct OutsideFixture
+{
+  RowMatrix H;
+  Vector Mass;
+
+  OutsideFixture(Eigen::Index n, Eigen::Index m, unsigned seed, std::initializer_list<int> outside)
+    : H(RandomSignals(n, m, seed))
+    , Mass(Vector::Ones(n))
+  {
+    for (const int i : outside)
+    {
+      this->Mass[i] = 0.0;
+    }
+  }
+  BasisView View() const { return BasisView(this->H.data(), this->H.rows(), this->H.cols()); }
+};
+
+/// max |A_i - B_i| over the rows i of zero mass (outside) or of non-zero mass (inside).
+double MaxRowDifference(const RowMatrix& A, const RowMatrix& B, const Vector& mass, bool outside)
+{
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+  {
+    if ((mass[i] == 0.0) == outside)
+    {
+      worst = std::max(worst, (A.row(i) - B.row(i)).cwiseAbs().maxCoeff());
+    }
+  }
+  return worst;
+}
+
+//------------------------------------------------------------------------------
 void FilterSignalKeepsOutsidePoints()
 {
   const Eigen::Index n = 50;
   const Eigen::Index m = 5;
-  const RowMatrix H = RandomSignals(n, m, 12u);
-  const BasisView view(H.data(), n, m);
-  Vector mass = Vector::Ones(n);
-  mass[3] = 0.0;
-  mass[17] = 0.0;
+  const OutsideFixture f(n, m, 12u, { 3, 17 });
+  const BasisView view = f.View();
   const RowMatrix X = RandomSignals(n, 2, 13u);
-  const RowMatrix C = ForwardTransform(view, mass, View(X));
+  const RowMatrix C = ForwardTransform(view, f.Mass, View(X));
   const Vector gains = Vector::Constant(m, 0.5);
   const RowMatrix Y = InverseTransform(view, gains, View(C), View(X), 0.2);
-  const RowMatrix F = FilterSignal(view, mass, gains, View(C), View(X), 0.2);
-  double inside = 0.0;
-  double outside = 0.0;
-  for (Eigen::Index i = 0; i < n; ++i)
-  {
-    if (mass[i] == 0.0)
-    {
-      outside = std::max(outside, (F.row(i) - X.row(i)).cwiseAbs().maxCoeff());
-    }
-    else
-    {
-      inside = std::max(inside, (F.row(i) - Y.row(i)).cwiseAbs().maxCoeff());
-    }
-  }
-  CheckBelow(inside, 0.0, "points of the surface: the inverse transform");
-  CheckBelow(outside, 0.0, "points of zero mass keep their input value");
+  const RowMatrix F = FilterSignal(view, f.Mass, gains, View(C), View(X), 0.2);
+  CheckBelow(MaxRowDifference(F, Y, f.Mass, false), 0.0,
+    "points of the surface: the inverse transform");
+  CheckBelow(MaxRowDifference(F, X, f.Mass, true), 0.0,
+    "points of zero mass keep their input value");
   CheckThrows<InvalidInput>(
     [&view, &gains, &C]() { FilterSignal(view, Vector::Ones(n), gains, View(C), NoSignal, 0.0); },
     "filter stage without the signal");
@@ -598,33 +619,22 @@ void OutsidePointsMayHoldNaN()
   // unused point) must not reach the coefficients, nor the filtered surface.
   const Eigen::Index n = 40;
   const Eigen::Index m = 4;
-  const RowMatrix H = RandomSignals(n, m, 14u);
-  const BasisView view(H.data(), n, m);
-  Vector mass = Vector::Ones(n);
-  mass[5] = 0.0;
-  mass[30] = 0.0;
+  const OutsideFixture f(n, m, 14u, { 5, 30 });
+  const BasisView view = f.View();
   const RowMatrix X = RandomSignals(n, 3, 15u);
   RowMatrix bad = X;
   bad.row(5).setConstant(std::numeric_limits<double>::quiet_NaN());
   bad(30, 1) = std::numeric_limits<double>::infinity();
   for (const int threads : { 1, 2 })
   {
-    const RowMatrix C = ForwardTransform(view, mass, View(X), threads);
-    const RowMatrix D = ForwardTransform(view, mass, View(bad), threads);
+    const RowMatrix C = ForwardTransform(view, f.Mass, View(X), threads);
+    const RowMatrix D = ForwardTransform(view, f.Mass, View(bad), threads);
     Check(D.allFinite(), "coefficients finite with NaN and infinity at points of zero mass");
     CheckBelow(MaxAbs(D - C), 0.0, "coefficients independent of the values at zero mass");
     const Vector gains = Vector::Constant(m, 0.5);
-    const RowMatrix F = FilterSignal(view, mass, gains, View(D), View(bad), 0.2, threads);
-    const RowMatrix G = FilterSignal(view, mass, gains, View(C), View(X), 0.2, threads);
-    double inside = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i)
-    {
-      if (mass[i] != 0.0)
-      {
-        inside = std::max(inside, (F.row(i) - G.row(i)).cwiseAbs().maxCoeff());
-      }
-    }
-    CheckBelow(inside, 0.0, "filtered surface points unaffected");
+    const RowMatrix F = FilterSignal(view, f.Mass, gains, View(D), View(bad), 0.2, threads);
+    const RowMatrix G = FilterSignal(view, f.Mass, gains, View(C), View(X), 0.2, threads);
+    CheckBelow(MaxRowDifference(F, G, f.Mass, false), 0.0, "filtered surface points unaffected");
   }
 }
 
