@@ -5,7 +5,7 @@
 Usage (pvpython or pvbatch, with the build tree's env.sh sourced; rendering needs a display,
 e.g. xvfb-run -a):
 
-    pvpython demo.py [mesh.ply] [output folder] [--harmonics M]
+    pvpython demo.py [mesh.ply] [output folder] [--harmonics M] [--denoise-harmonics M]
 
 Writes to the output folder (default: demo-output):
   bunny_basis.vtp   the mesh with the point arrays ManifoldHarmonics and ManifoldHarmonicsMass
@@ -44,13 +44,20 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_MESH = os.path.join(HERE, "..", "..", "Testing", "Data", "bunny.ply")
 
 
+def at_least_two(text):
+    value = int(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError("must be at least 2, not %d" % value)
+    return value
+
+
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(description="Manifold harmonics demo")
     parser.add_argument("mesh", nargs="?", default=DEFAULT_MESH, help="a .ply surface mesh")
     parser.add_argument("output", nargs="?", default="demo-output", help="output folder")
-    parser.add_argument("--harmonics", type=int, default=300,
+    parser.add_argument("--harmonics", type=at_least_two, default=300,
                         help="number of harmonics of the bunny's basis (default 300)")
-    parser.add_argument("--denoise-harmonics", type=int, default=500,
+    parser.add_argument("--denoise-harmonics", type=at_least_two, default=500,
                         help="number of harmonics for denoising (default 500)")
     return parser.parse_args(argv)
 
@@ -196,6 +203,8 @@ def main(argv):
     basis.Update()
     output = basis.GetOutput()
     eigenvalues = output.GetFieldData().GetArray(vtkManifoldHarmonicBasis.EigenvaluesArrayName())
+    if eigenvalues is None:
+        raise SystemExit("the basis could not be computed")
     m = eigenvalues.GetNumberOfTuples()
     print("basis: %d harmonics, lambda_1 = %.6g, lambda_%d = %.6g" % (
         m, eigenvalues.GetValue(1), m - 1, eigenvalues.GetValue(m - 1)))
@@ -205,8 +214,9 @@ def main(argv):
     writer.SetInputData(output)
     writer.Write()
 
+    # Four harmonics from low to high frequency (fewer when the basis has fewer than 121).
     panels = []
-    for k in (1, 6, 25, min(m - 1, 120)):
+    for k in sorted(set(min(wanted, m - 1) for wanted in (1, 6, 25, 120))):
         view, name, lut = harmonic_view(output, k)
         panels.append((actor_for(view, name, lut), "H%d  (omega = %.2f)" % (
             k, math.sqrt(max(eigenvalues.GetValue(k), 0.0)))))
@@ -232,6 +242,8 @@ def main(argv):
     noisy_basis.Update()
     values = noisy_basis.GetOutput().GetFieldData().GetArray(
         vtkManifoldHarmonicBasis.EigenvaluesArrayName())
+    if values is None:
+        raise SystemExit("the basis of the noisy mesh could not be computed")
     md = values.GetNumberOfTuples()
     cutoff = math.sqrt(values.GetValue((4 * md) // 5))
     lowpass.SetCutoff(cutoff)
