@@ -9,8 +9,10 @@
 //     --cutoff w        cutoff frequency (default: half the highest computed frequency)
 //     --upper w         upper band edge (default: 2 x cutoff)
 //     --gain g          gain of enhancement and exaggeration (default 2)
-//     --time t          heat diffusion time (default 0)
+//     --time t          heat diffusion time (default ln 2 / cutoff^2, where the gain at the
+//                       cutoff is 1/2)
 //     --no-reinject     drop the frequencies above the last harmonic
+//     --help            this text
 //
 // The filtered coordinates replace the points; the output also holds the basis arrays and the
 // coefficients of the points. Run by CTest on Testing/Data/bunny.ply.
@@ -31,6 +33,8 @@
 #include "vtkTimerLog.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <cctype>
@@ -53,17 +57,40 @@ struct Options
   double Cutoff = -1.0; // < 0: half the highest computed frequency
   double Upper = -1.0;  // < 0: twice the cutoff
   double Gain = 2.0;
-  double Time = 0.0;
+  double Time = -1.0; // < 0: ln 2 / cutoff^2
   bool Reinject = true;
 };
 
-int Usage(const char* program)
+const char* const OptionsHelp =
+  "  --harmonics m   number of harmonics (default 100)\n"
+  "  --kind k        lowpass, highpass, bandpass, bandstop, enhancement, exaggeration, heat,\n"
+  "                  custom: a ramp from gain 1 at 0 to 0 at the cutoff (default lowpass)\n"
+  "  --cutoff w      cutoff frequency (default: half the highest computed frequency)\n"
+  "  --upper w       upper band edge (default: 2 x cutoff)\n"
+  "  --gain g        gain of enhancement and exaggeration (default 2)\n"
+  "  --time t        heat diffusion time (default ln 2 / cutoff^2: the gain at the cutoff is 1/2)\n"
+  "  --no-reinject   drop the frequencies above the last harmonic\n";
+
+void PrintUsage(std::ostream& os, const char* program)
 {
-  std::cerr << "Usage: " << program
-            << " input.(ply|obj|stl|vtp) output.vtp [--harmonics m] [--kind lowpass|highpass|"
-               "bandpass|bandstop|enhancement|exaggeration|heat|custom] [--cutoff w] [--upper w] "
-               "[--gain g] [--time t] [--no-reinject]\n";
-  return EXIT_FAILURE;
+  os << "Usage: " << program << " input.(ply|obj|stl|vtp) output.vtp [options]\n" << OptionsHelp;
+}
+
+/// The lower-case extension of a file name, without the dot ("" without one).
+std::string Extension(const std::string& fileName)
+{
+  const std::size_t dot = fileName.find_last_of('.');
+  const std::size_t slash = fileName.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return "";
+  }
+  std::string extension = fileName.substr(dot + 1);
+  std::transform(extension.begin(),
+    extension.end(),
+    extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
 }
 
 /// `text` as a number of type T, all of it; false (with a message naming `option`) otherwise.
@@ -75,6 +102,23 @@ bool ReadNumber(const std::string& option, const std::string& text, T& value)
   if (!(stream >> parsed) || !(stream >> std::ws).eof())
   {
     std::cerr << option << ": '" << text << "' is not a number\n";
+    return false;
+  }
+  value = parsed;
+  return true;
+}
+
+/// `text` as a finite number >= 0; false (with a message naming `option`) otherwise.
+bool ReadNonNegative(const std::string& option, const std::string& text, double& value)
+{
+  double parsed = 0.0;
+  if (!ReadNumber(option, text, parsed))
+  {
+    return false;
+  }
+  if (!(parsed >= 0.0) || !std::isfinite(parsed))
+  {
+    std::cerr << option << ": a finite number >= 0, not " << text << "\n";
     return false;
   }
   value = parsed;
@@ -97,8 +141,7 @@ bool Parse(int argc, char* argv[], Options& options)
   }
   options.Input = argv[1];
   options.Output = argv[2];
-  if (options.Output.size() < 4 ||
-    options.Output.compare(options.Output.size() - 4, 4, ".vtp") != 0)
+  if (Extension(options.Output) != "vtp")
   {
     std::cerr << "The output is written as VTK XML polydata: name it .vtp, not " << options.Output
               << "\n";
@@ -114,6 +157,7 @@ bool Parse(int argc, char* argv[], Options& options)
     }
     if (i + 1 >= argc)
     {
+      std::cerr << option << ": needs a value\n";
       return false;
     }
     const std::string value = argv[++i];
@@ -129,21 +173,27 @@ bool Parse(int argc, char* argv[], Options& options)
         return false;
       }
     }
-    else if (option == "--kind" && kinds.count(value))
+    else if (option == "--kind")
     {
+      if (!kinds.count(value))
+      {
+        std::cerr << "--kind: '" << value << "' is none of lowpass, highpass, bandpass, "
+                  << "bandstop, enhancement, exaggeration, heat, custom\n";
+        return false;
+      }
       options.KindName = value;
       options.Kind = kinds.at(value);
     }
     else if (option == "--cutoff")
     {
-      if (!ReadNumber(option, value, options.Cutoff))
+      if (!ReadNonNegative(option, value, options.Cutoff))
       {
         return false;
       }
     }
     else if (option == "--upper")
     {
-      if (!ReadNumber(option, value, options.Upper))
+      if (!ReadNonNegative(option, value, options.Upper))
       {
         return false;
       }
@@ -157,13 +207,14 @@ bool Parse(int argc, char* argv[], Options& options)
     }
     else if (option == "--time")
     {
-      if (!ReadNumber(option, value, options.Time))
+      if (!ReadNonNegative(option, value, options.Time))
       {
         return false;
       }
     }
     else
     {
+      std::cerr << "Unknown option " << option << "\n";
       return false;
     }
   }
@@ -173,11 +224,7 @@ bool Parse(int argc, char* argv[], Options& options)
 /// Reads a surface with the reader that its extension names, or returns null.
 vtkSmartPointer<vtkPolyData> Read(const std::string& fileName)
 {
-  std::string extension = fileName.substr(fileName.find_last_of('.') + 1);
-  std::transform(extension.begin(),
-    extension.end(),
-    extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = Extension(fileName);
   vtkSmartPointer<vtkAlgorithm> reader;
   if (extension == "ply")
   {
@@ -216,10 +263,27 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& fileName)
 
 int main(int argc, char* argv[])
 {
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h")
+    {
+      PrintUsage(std::cout, argv[0]);
+      return EXIT_SUCCESS;
+    }
+  }
   Options options;
   if (!Parse(argc, argv, options))
   {
-    return Usage(argv[0]);
+    PrintUsage(std::cerr, argv[0]);
+    return EXIT_FAILURE;
+  }
+  // Refuse an output that cannot be written before the basis is computed.
+  const std::string folder =
+    vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(options.Output));
+  if (!vtksys::SystemTools::FileIsDirectory(folder))
+  {
+    std::cerr << "Cannot write " << options.Output << ": no folder " << folder << "\n";
+    return EXIT_FAILURE;
   }
   vtkSmartPointer<vtkPolyData> surface = Read(options.Input);
   if (!surface || surface->GetNumberOfPoints() == 0)
@@ -257,7 +321,9 @@ int main(int argc, char* argv[])
   filter->SetCutoff(cutoff);
   filter->SetUpperCutoff(options.Upper >= 0.0 ? options.Upper : 2.0 * cutoff);
   filter->SetGain(options.Gain);
-  filter->SetTime(options.Time);
+  const double time =
+    options.Time >= 0.0 ? options.Time : (cutoff > 0.0 ? std::log(2.0) / (cutoff * cutoff) : 0.0);
+  filter->SetTime(time);
   filter->SetReinjectHighFrequencies(options.Reinject);
   filter->RemoveAllControlPoints();
   filter->AddControlPoint(0.0, 1.0);
@@ -282,7 +348,7 @@ int main(int argc, char* argv[])
   std::cout << "Filter " << options.KindName;
   if (options.Kind == vtkSpectralFilter::HEAT_DIFFUSION)
   {
-    std::cout << ", time " << options.Time;
+    std::cout << ", time " << time;
   }
   else
   {

@@ -9,7 +9,8 @@ Usage (pvpython, with the build tree's env.sh sourced):
         [--cutoff W] [--upper W] [--gain G] [--time T] [--no-reinject]
 
 The cutoff defaults to half the highest computed frequency; custom is a ramp from gain 1 at 0
-to gain 0 at the cutoff. The Python twin of
+to gain 0 at the cutoff; the heat time defaults to ln 2 / cutoff^2, where the heat kernel halves
+the cutoff frequency. The Python twin of
 Examples/Cxx/ManifoldHarmonicFilter.cxx; run by CTest on Testing/Data/bunny.ply.
 """
 
@@ -50,19 +51,30 @@ def positive_int(text):
     return value
 
 
+def non_negative_float(text):
+    value = float(text)
+    if not value >= 0.0 or math.isinf(value):
+        raise argparse.ArgumentTypeError("must be a finite number >= 0, not %s" % text)
+    return value
+
+
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("input", help="surface mesh: .ply, .obj, .stl or .vtp")
     parser.add_argument("output", help="filtered mesh, .vtp")
     parser.add_argument("--harmonics", type=positive_int, default=100,
-                        help="number of harmonics (at least 1)")
-    parser.add_argument("--kind", choices=sorted(KINDS), default="lowpass")
-    parser.add_argument("--cutoff", type=float, default=None,
+                        help="number of harmonics, at least 1 (default 100)")
+    parser.add_argument("--kind", choices=sorted(KINDS), default="lowpass",
+                        help="transfer function (default lowpass)")
+    parser.add_argument("--cutoff", type=non_negative_float, default=None,
                         help="cutoff frequency (default: half the highest computed one)")
-    parser.add_argument("--upper", type=float, default=None,
+    parser.add_argument("--upper", type=non_negative_float, default=None,
                         help="upper band edge (default: twice the cutoff)")
-    parser.add_argument("--gain", type=float, default=2.0)
-    parser.add_argument("--time", type=float, default=0.0)
+    parser.add_argument("--gain", type=float, default=2.0,
+                        help="gain of enhancement and exaggeration (default 2)")
+    parser.add_argument("--time", type=non_negative_float, default=None,
+                        help="heat diffusion time (default: ln 2 / cutoff^2, the gain at the "
+                        "cutoff is 1/2)")
     parser.add_argument("--no-reinject", action="store_true",
                         help="drop the frequencies above the last harmonic")
     return parser.parse_args(argv)
@@ -83,6 +95,9 @@ def main(argv):
     if not args.output.lower().endswith(".vtp"):
         raise SystemExit("the output is written as VTK XML polydata: name it .vtp, not %s"
                          % args.output)
+    folder = os.path.dirname(os.path.abspath(args.output))
+    if not os.path.isdir(folder):
+        raise SystemExit("cannot write %s: no folder %s" % (args.output, folder))
     surface = read_surface(args.input)
     if surface.GetNumberOfPoints() == 0:
         raise SystemExit("no surface read from %s" % args.input)
@@ -104,13 +119,15 @@ def main(argv):
     transform.SetInputConnection(basis.GetOutputPort())
 
     cutoff = args.cutoff if args.cutoff is not None else 0.5 * highest
+    time = args.time if args.time is not None else (
+        math.log(2.0) / cutoff ** 2 if cutoff > 0.0 else 0.0)
     spectral = vtkSpectralFilter()
     spectral.SetInputConnection(transform.GetOutputPort())
     spectral.SetFilterKind(KINDS[args.kind])
     spectral.SetCutoff(cutoff)
     spectral.SetUpperCutoff(args.upper if args.upper is not None else 2.0 * cutoff)
     spectral.SetGain(args.gain)
-    spectral.SetTime(args.time)
+    spectral.SetTime(time)
     spectral.SetReinjectHighFrequencies(not args.no_reinject)
     spectral.RemoveAllControlPoints()
     spectral.AddControlPoint(0.0, 1.0)
@@ -125,7 +142,7 @@ def main(argv):
     writer.SetDataModeToBinary()
     if writer.Write() != 1 or writer.GetErrorCode() != 0:
         raise SystemExit("could not write %s" % args.output)
-    setting = "time %g" % args.time if args.kind == "heat" else "cutoff %g" % cutoff
+    setting = "time %g" % time if args.kind == "heat" else "cutoff %g" % cutoff
     print("filter %s, %s: wrote %s" % (args.kind, setting, args.output))
     return 0
 
