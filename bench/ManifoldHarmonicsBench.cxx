@@ -30,10 +30,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -247,6 +249,35 @@ int RunCase(const Settings& settings, int n, int m)
 
 Settings Parse(int argc, char* argv[])
 {
+  const auto usage = [argv]()
+  {
+    std::fprintf(stderr,
+      "usage: %s [--case N:M]... [--band K] [--filter] [--scipy] [--scipy-max-n N] "
+      "[--workdir DIR]\n",
+      argv[0]);
+    std::exit(2);
+  };
+  // A whole argument as an integer of at least `least`; otherwise a message and the usage.
+  const auto integer = [&usage](const std::string& option, const std::string& text, int least)
+  {
+    std::size_t used = 0;
+    long value = 0;
+    try
+    {
+      value = std::stol(text, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used == 0 || used != text.size() || value < least || value > INT_MAX)
+    {
+      std::fprintf(
+        stderr, "%s: '%s' is not an integer >= %d\n", option.c_str(), text.c_str(), least);
+      usage();
+    }
+    return static_cast<int>(value);
+  };
   Settings settings;
   const std::string self = argv[0];
   const std::size_t slash = self.rfind('/');
@@ -259,12 +290,17 @@ Settings Parse(int argc, char* argv[])
     {
       const std::string value = argv[++i];
       const std::size_t colon = value.find(':');
-      settings.Cases.emplace_back(std::stoi(value.substr(0, colon)),
-        colon == std::string::npos ? 100 : std::stoi(value.substr(colon + 1)));
+      if (colon == std::string::npos)
+      {
+        std::fprintf(stderr, "--case: '%s' is not N:M (points:harmonics)\n", value.c_str());
+        usage();
+      }
+      settings.Cases.emplace_back(integer("--case N", value.substr(0, colon), 1),
+        integer("--case M", value.substr(colon + 1), 1));
     }
     else if (arg == "--band" && i + 1 < argc)
     {
-      settings.BandSize = std::stoi(argv[++i]);
+      settings.BandSize = integer("--band", argv[++i], 0);
     }
     else if (arg == "--scipy")
     {
@@ -276,7 +312,7 @@ Settings Parse(int argc, char* argv[])
     }
     else if (arg == "--scipy-max-n" && i + 1 < argc)
     {
-      settings.ScipyMaxN = std::stoi(argv[++i]);
+      settings.ScipyMaxN = integer("--scipy-max-n", argv[++i], 0);
     }
     else if (arg == "--workdir" && i + 1 < argc)
     {
@@ -284,11 +320,7 @@ Settings Parse(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr,
-        "usage: %s [--case N:M]... [--band K] [--filter] [--scipy] [--scipy-max-n N] "
-        "[--workdir DIR]\n",
-        argv[0]);
-      std::exit(2);
+      usage();
     }
   }
   if (settings.Cases.empty())
