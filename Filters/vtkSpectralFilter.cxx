@@ -219,22 +219,31 @@ void FillSpectrum(const spectral::Vector& lambda,
 }
 
 /// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
-/// GetTimeRange) from the eigenvalues of the basis; left as they are without eigenvalues.
-void SliderRanges(const spectral::Vector& lambda, double frequency[2], double time[2])
+/// GetTimeRange) from the eigenvalues of the basis; [0, 2] and [0, 1] when the basis has no
+/// non-constant harmonic.
+void SliderRanges(const spectral::Vector& lambda,
+  double nyquist,
+  double frequency[2],
+  double time[2])
 {
-  if (lambda.size() == 0)
+  // Eigenvalues at round-off of the Laplacian, whose largest eigenvalues are of the order of
+  // nyquist^2, count as zero (the constant harmonics, one per connected component). Without a
+  // Nyquist frequency (no triangle of finite size), any positive eigenvalue counts.
+  const auto nonZero = [nyquist](double value)
+  { return value > 1e-10 * nyquist * nyquist && std::isfinite(value); };
+  frequency[0] = 0.0;
+  frequency[1] = 2.0;
+  time[0] = 0.0;
+  time[1] = 1.0;
+  if (lambda.size() == 0 || !nonZero(lambda[lambda.size() - 1]))
   {
-    return;
+    return; // no non-constant harmonic: the ranges of an unexecuted filter
   }
-  const double top = std::max(lambda[lambda.size() - 1], 0.0);
-  if (top > 0.0 && std::isfinite(top))
-  {
-    frequency[1] = std::sqrt(top);
-  }
+  frequency[1] = std::sqrt(lambda[lambda.size() - 1]);
   // The lowest non-constant harmonic: the first eigenvalue clear of the zero ones.
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
   {
-    if (lambda[k] > 1e-8 * top)
+    if (nonZero(lambda[k]))
     {
       time[1] = 4.0 / lambda[k];
       break;
@@ -430,12 +439,10 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   output->ShallowCopy(input);
   // Collective in a distributed run, so before any return.
   vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
-  double nyquist = 0.0;
-  if (this->ReinjectHighFrequencies)
-  {
-    this->UpdateEdgeSums(input);
-    nyquist = ::NyquistFrequency(controller, { this->EdgeSums[0], this->EdgeSums[1] });
-  }
+  // The Nyquist frequency, for the re-injection and for telling zero eigenvalues in the slider
+  // ranges (the edge sums are kept while the input does not change).
+  this->UpdateEdgeSums(input);
+  const double nyquist = ::NyquistFrequency(controller, { this->EdgeSums[0], this->EdgeSums[1] });
   const bool writeSpectrum = !controller || controller->GetLocalProcessId() == 0;
   if (input->GetNumberOfPoints() == 0)
   {
@@ -466,7 +473,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   {
     const spectral::FilterParameters parameters = Parameters(this);
     const spectral::Vector lambda = basis.EigenvalueVector();
-    SliderRanges(lambda, this->FrequencyRange, this->TimeRange);
+    SliderRanges(lambda, nyquist, this->FrequencyRange, this->TimeRange);
     const spectral::Vector gains = spectral::Gains(parameters, lambda);
     if (writeSpectrum)
     {

@@ -215,10 +215,12 @@ public:
    * Slider ranges for the ParaView panel, from the basis of the last execution (results, not
    * parameters): FrequencyRange = [0, omega_max], omega_max = sqrt(lambda_{m-1}) the highest
    * computed frequency (for Cutoff and UpperCutoff), and TimeRange = [0, 4 / lambda_1], where
-   * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time). Before the
-   * first execution [0, 2] and [0, 1]: the panel takes its default values from these ranges
-   * (Cutoff at the middle, UpperCutoff at the top, Time at the bottom), which keeps them at 1, 2
-   * and 0.
+   * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time).
+   * Eigenvalues below 1e-10 omega_N^2 (omega_N the Nyquist frequency, see the class
+   * documentation) are the zero eigenvalues of the constant harmonics. Before the first
+   * execution, and after one on a basis of constant harmonics only, [0, 2] and [0, 1]: the panel
+   * takes its default values from these ranges (Cutoff at the middle, UpperCutoff at the top,
+   * Time at the bottom), which keeps them at 1, 2 and 0.
    */
   vtkGetVector2Macro(FrequencyRange, double);
   vtkGetVector2Macro(TimeRange, double);

@@ -562,6 +562,43 @@ bool TestHeatDiffusion()
 }
 
 //------------------------------------------------------------------------------
+// The slider ranges follow the basis of the last execution: [0, sqrt(lambda_{m-1})] and
+// [0, 4 / lambda_1] for a basis with non-constant harmonics; for a basis of the constant harmonic
+// alone (its eigenvalue at round-off, of either sign), the ranges of an unexecuted filter, not
+// the previous run's nor ranges built from round-off.
+bool TestSliderRanges()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 10, {});
+  bool ok = true;
+  pipeline.Run();
+  vtkDataArray* lambda = pipeline.Basis->GetOutput()->GetFieldData()->GetArray(
+    vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  const double* frequency = pipeline.Filter->GetFrequencyRange();
+  const double* time = pipeline.Filter->GetTimeRange();
+  std::cout << "Slider ranges, m = 10: [" << frequency[0] << ", " << frequency[1] << "], ["
+            << time[0] << ", " << time[1] << "]" << std::endl;
+  ok &= Check(frequency[0] == 0.0 &&
+      std::abs(frequency[1] - std::sqrt(lambda->GetTuple1(9))) < 1e-12 * frequency[1] &&
+      time[0] == 0.0 && std::abs(time[1] - 4.0 / lambda->GetTuple1(1)) < 1e-12 * time[1],
+    "slider ranges of a basis of 10 harmonics");
+  pipeline.Basis->SetNumberOfHarmonics(1);
+  pipeline.Run();
+  frequency = pipeline.Filter->GetFrequencyRange();
+  time = pipeline.Filter->GetTimeRange();
+  std::cout << "Slider ranges, m = 1 (lambda_0 = "
+            << pipeline.Basis->GetOutput()
+                 ->GetFieldData()
+                 ->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName())
+                 ->GetTuple1(0)
+            << "): [" << frequency[0] << ", " << frequency[1] << "], [" << time[0] << ", "
+            << time[1] << "]" << std::endl;
+  ok &= Check(frequency[0] == 0.0 && frequency[1] == 2.0 && time[0] == 0.0 && time[1] == 1.0,
+    "slider ranges of a basis of the constant harmonic alone");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // The output's coefficients describe its signals, so filters chain: without re-injection, heat
 // diffusion for t1 then t2 equals heat diffusion for t1 + t2.
 bool TestChaining()
@@ -811,5 +848,6 @@ int TestSpectralFilter(int, char*[])
   ok &= TestAbort();
   ok &= TestInteractive();
   ok &= TestMissingInputs();
+  ok &= TestSliderRanges();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
