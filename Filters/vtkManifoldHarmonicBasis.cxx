@@ -304,8 +304,9 @@ std::string MemoryProblem(
     spectral::EstimateBasisMemory(static_cast<std::uint64_t>(numPts),
       static_cast<std::uint64_t>(used), m, self->GetBandSize(), floats ? 4 : 8);
   const bool limited = self->GetMemoryLimit() > 0.0;
+  // A limit below one byte still limits (0 would mean "the system does not say").
   const std::uint64_t available = limited
-    ? static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0)
+    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
     : spectral::AvailableMemory();
   if (available == 0 || need.Total() <= available)
   {

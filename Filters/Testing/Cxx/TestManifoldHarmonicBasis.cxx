@@ -494,6 +494,15 @@ bool TestMemoryGuard()
     ok &= Check(basis->GetOutput()->GetNumberOfPoints() == 0 && !Harmonics(basis->GetOutput()),
       "the output is empty after the memory error");
 
+    // A limit below one byte still limits (it rounded to 0, "the system does not say").
+    basis->SetMemoryLimit(1e-9);
+    errors->Clear();
+    basis->Update();
+    ok &= Check(errors->GetError() &&
+        errors->GetErrorMessage().find("Not enough memory") != std::string::npos &&
+        basis->GetOutput()->GetNumberOfPoints() == 0,
+      "a MemoryLimit below one byte fails like any limit too small");
+
     // A limit the estimate fits in: the basis is computed.
     basis->SetMemoryLimit(1024.0);
     errors->Clear();
