@@ -13,7 +13,9 @@
  * the inner product of x and H^k weighted by the lumped mass D (B. Vallet and B. Levy,
  * "Spectral Geometry Processing with Manifold Harmonics", Computer Graphics Forum 27(2), 2008,
  * section 3.3). It is the discrete counterpart of a Fourier transform on the surface: small k are
- * the smooth, large-scale parts of x, large k the fine details.
+ * the smooth, large-scale parts of x, large k the fine details. It is exact for a basis computed
+ * with the lumped mass (the default); a basis computed with the consistent mass is orthonormal
+ * for D only to discretization error, and so are its coefficients.
  *
  * Input: the output of vtkManifoldHarmonicBasis, i.e. a vtkPolyData with the point-data arrays
  * `ManifoldHarmonics` (n tuples of m components) and `ManifoldHarmonicsMass` (n values) and the
