@@ -71,7 +71,9 @@ public:
   /**
    * Number m of harmonics to compute (lowest frequencies first): at least 1 (a smaller value is
    * refused with an error and the previous value kept), clamped at execution to the number of
-   * points triangles use. Default is 100.
+   * points triangles use. It must exceed the number of connected components of the surface,
+   * whose harmonics are constant (frequency 0): with no other harmonic the execution fails with
+   * an error and an empty output. Default is 100.
    */
   virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);

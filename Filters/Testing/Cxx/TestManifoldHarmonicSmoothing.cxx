@@ -12,6 +12,7 @@
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkManifoldHarmonicBasis.h"
@@ -25,6 +26,7 @@
 #include "vtkSpectralFilter.h"
 #include "vtkSphereSource.h"
 #include "vtkTable.h"
+#include "vtkTestErrorObserver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -313,6 +315,36 @@ bool TestReuseProgressAbort(vtkPolyData* input)
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
+// With one harmonic per connected component all harmonics are constant (frequency 0, lambda at
+// round-off of either sign): the cutoff, a fraction of sqrt(round-off), used to put every point at
+// the origin or halfway to the centroid without a word. It is an error now, with an empty output;
+// two harmonics smooth again.
+bool TestOnlyConstantHarmonics(vtkPolyData* input)
+{
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(input);
+  smoothing->SetNumberOfHarmonics(1);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  smoothing->AddObserver(vtkCommand::ErrorEvent, errors);
+  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  smoothing->Update();
+  const std::string message = errors->GetErrorMessage();
+  bool ok = Check(errors->GetError() && message.find("all constant") != std::string::npos &&
+      smoothing->GetOutput()->GetNumberOfPoints() == 0,
+    "one harmonic on a sphere is an error with an empty output");
+  std::cout << "One harmonic: "
+            << (message.find("The 1 harmonic") != std::string::npos ? "refused" : "(no message)")
+            << std::endl;
+  errors->Clear();
+  smoothing->SetNumberOfHarmonics(4);
+  smoothing->Update();
+  ok &= Check(!errors->GetError() &&
+      smoothing->GetOutput()->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "four harmonics smooth the sphere");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 int TestManifoldHarmonicSmoothing(int, char*[])
 {
   vtkSmartPointer<vtkPolyData> input = NoisySphere();
@@ -320,5 +352,6 @@ int TestManifoldHarmonicSmoothing(int, char*[])
   ok &= TestFloatBasis(input);
   ok &= TestSpectrumTable(input);
   ok &= TestReuseProgressAbort(input);
+  ok &= TestOnlyConstantHarmonics(input);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
