@@ -10,6 +10,7 @@
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -120,6 +121,19 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
+  // Nothing to smooth without polygons: pass the input on, as the basis does, rather than let
+  // the internal stages report errors about a basis they did not get. (In a distributed run the
+  // stages are collective and every process runs them.)
+  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0 &&
+    !vtkManifoldHarmonicsParallel::DistributedController())
+  {
+    if (input->GetNumberOfPoints() > 0)
+    {
+      vtkWarningMacro(<< "The input has no polygons: passed on unchanged.");
+    }
+    output->ShallowCopy(input);
+    return 1;
+  }
   // A new input (or the same one modified) recomputes the basis; a new cutoff alone does not.
   // In a distributed run every process executes each stage (they are collective), and every
   // process sees the same parameters and the same kind of input change.

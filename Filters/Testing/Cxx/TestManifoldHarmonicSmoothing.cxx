@@ -345,6 +345,38 @@ bool TestOnlyConstantHarmonics(vtkPolyData* input)
 }
 
 //------------------------------------------------------------------------------
+// Input without polygons (a polyline): passed on unchanged with a warning of the smoothing's own,
+// not errors of its internal transform and filter.
+bool TestNoPolygons()
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell(3);
+  for (int i = 0; i < 3; ++i)
+  {
+    lines->InsertCellPoint(points->InsertNextPoint(i, i * i, 0.0));
+  }
+  vtkNew<vtkPolyData> polyline;
+  polyline->SetPoints(points);
+  polyline->SetLines(lines);
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(polyline);
+  vtkNew<vtkTest::ErrorObserver> messages;
+  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
+  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
+  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, messages);
+  smoothing->Update();
+  vtkPolyData* output = smoothing->GetOutput();
+  std::cout << "No polygons: " << output->GetNumberOfPoints() << " points, "
+            << output->GetNumberOfLines() << " line passed on" << std::endl;
+  return Check(!messages->GetError() && messages->GetWarning() &&
+      messages->GetWarningMessage().find("no polygons") != std::string::npos &&
+      output->GetNumberOfPoints() == 3 && output->GetNumberOfLines() == 1 &&
+      output->GetPoint(2)[1] == 4.0,
+    "a polyline is passed on with a warning and no error");
+}
+
+//------------------------------------------------------------------------------
 int TestManifoldHarmonicSmoothing(int, char*[])
 {
   vtkSmartPointer<vtkPolyData> input = NoisySphere();
@@ -353,5 +385,6 @@ int TestManifoldHarmonicSmoothing(int, char*[])
   ok &= TestSpectrumTable(input);
   ok &= TestReuseProgressAbort(input);
   ok &= TestOnlyConstantHarmonics(input);
+  ok &= TestNoPolygons();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
