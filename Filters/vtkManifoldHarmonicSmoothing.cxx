@@ -11,10 +11,8 @@
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsParallel.h"
-#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
 
@@ -47,36 +45,17 @@ double HighestFrequency(vtkPolyData* basisOutput)
 
 //------------------------------------------------------------------------------
 // Whether a basis with eigenvalues has none but the zero ones of its constant harmonics (one per
-// connected component). Eigenvalues count as zero below 1e-10 (pi / h)^2, where (pi / h)^2 is
-// the order of the Laplacian's largest eigenvalues and h the typical edge length, estimated from
-// the area (the sum of the lumped mass) and the points it covers: about two triangles per point,
-// so h^2 = 2 area / (sqrt(3) points).
-bool OnlyConstantHarmonics(vtkPolyData* basisOutput)
+// connected component), by the rule of the spectral filter that ran on it.
+bool OnlyConstantHarmonics(vtkPolyData* basisOutput, vtkSpectralFilter* filter)
 {
-  vtkDataArray* mass =
-    basisOutput->GetPointData()->GetArray(vtkManifoldHarmonicBasis::MassArrayName());
   vtkDataArray* lambda =
     basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
-  if (!mass || !lambda || lambda->GetNumberOfTuples() == 0)
+  if (!lambda || lambda->GetNumberOfTuples() == 0)
   {
     return false; // no basis (an empty piece of a distributed run)
   }
-  const double omega = HighestFrequency(basisOutput);
-  double area = 0.0;
-  vtkIdType used = 0;
-  for (vtkIdType i = 0; i < mass->GetNumberOfTuples(); ++i)
-  {
-    const double value = mass->GetTuple1(i);
-    area += value > 0.0 ? value : 0.0;
-    used += value > 0.0 ? 1 : 0;
-  }
-  if (!(area > 0.0))
-  {
-    return omega == 0.0;
-  }
-  const double edge2 = 2.0 * area / (std::sqrt(3.0) * static_cast<double>(used));
-  const double nyquist2 = vtkMath::Pi() * vtkMath::Pi() / edge2;
-  return omega * omega <= 1e-10 * nyquist2;
+  return !vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(
+    lambda->GetTuple1(lambda->GetNumberOfTuples() - 1), filter->GetNyquistFrequency());
 }
 } // anonymous namespace
 
@@ -160,7 +139,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->SetProgressText("Spectral filter");
   this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
   this->Filter->Update(); // collective: before any process returns
-  if (OnlyConstantHarmonics(this->Basis->GetOutput()))
+  if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
   {
     vtkErrorMacro(<< "The " << this->NumberOfHarmonics
                   << " harmonic(s) are all constant (one per connected component of the surface, "

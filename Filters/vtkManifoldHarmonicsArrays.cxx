@@ -264,4 +264,10 @@ bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
   }
   return true;
 }
+
+//------------------------------------------------------------------------------
+bool IsNonZeroEigenvalue(double lambda, double nyquist)
+{
+  return lambda > 1e-10 * nyquist * nyquist && std::isfinite(lambda);
+}
 } // namespace vtkManifoldHarmonicsArrays

@@ -105,6 +105,15 @@ std::string Concatenate(const char* name, const char* suffix);
  * `current` value stays.
  */
 bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current);
+
+/**
+ * Whether eigenvalue `lambda` belongs to a non-constant harmonic, i.e. is clear of the zero
+ * eigenvalues of the constant harmonics (one per connected component), which come out at
+ * round-off of the Laplacian. Its largest eigenvalues are of the order of nyquist^2 (nyquist =
+ * pi / mean edge length, vtkSpectralFilter::GetNyquistFrequency()), so the threshold is
+ * 1e-10 nyquist^2; with nyquist 0 (no triangle of finite size) any positive finite value counts.
+ */
+bool IsNonZeroEigenvalue(double lambda, double nyquist);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

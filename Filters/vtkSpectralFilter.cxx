@@ -218,6 +218,11 @@ void FillSpectrum(const spectral::Vector& lambda,
   }
 }
 
+/// The slider ranges of a filter that has not run, or ran on constant harmonics only: they keep
+/// the panel's defaults (Cutoff 1, UpperCutoff 2, Time 0; see GetFrequencyRange).
+constexpr double InitialFrequencyRange[2] = { 0.0, 2.0 };
+constexpr double InitialTimeRange[2] = { 0.0, 1.0 };
+
 /// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
 /// GetTimeRange) from the eigenvalues of the basis; [0, 2] and [0, 1] when the basis has no
 /// non-constant harmonic.
@@ -226,15 +231,10 @@ void SliderRanges(const spectral::Vector& lambda,
   double frequency[2],
   double time[2])
 {
-  // Eigenvalues at round-off of the Laplacian, whose largest eigenvalues are of the order of
-  // nyquist^2, count as zero (the constant harmonics, one per connected component). Without a
-  // Nyquist frequency (no triangle of finite size), any positive eigenvalue counts.
   const auto nonZero = [nyquist](double value)
-  { return value > 1e-10 * nyquist * nyquist && std::isfinite(value); };
-  frequency[0] = 0.0;
-  frequency[1] = 2.0;
-  time[0] = 0.0;
-  time[1] = 1.0;
+  { return vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(value, nyquist); };
+  std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, frequency);
+  std::copy(InitialTimeRange, InitialTimeRange + 2, time);
   if (lambda.size() == 0 || !nonZero(lambda[lambda.size() - 1]))
   {
     return; // no non-constant harmonic: the ranges of an unexecuted filter
@@ -313,6 +313,8 @@ vtkSpectralFilter::vtkSpectralFilter()
   this->Time = 0.0;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
+  std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, this->FrequencyRange);
+  std::copy(InitialTimeRange, InitialTimeRange + 2, this->TimeRange);
   this->SetNumberOfOutputPorts(2);
   this->ControlPoints->SetNumberOfComponents(2);
   this->AddControlPoint(0.0, 1.0);
@@ -443,6 +445,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   // ranges (the edge sums are kept while the input does not change).
   this->UpdateEdgeSums(input);
   const double nyquist = ::NyquistFrequency(controller, { this->EdgeSums[0], this->EdgeSums[1] });
+  this->NyquistFrequency = nyquist;
   const bool writeSpectrum = !controller || controller->GetLocalProcessId() == 0;
   if (input->GetNumberOfPoints() == 0)
   {

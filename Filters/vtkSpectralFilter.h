@@ -226,6 +226,14 @@ public:
   vtkGetVector2Macro(TimeRange, double);
   ///@}
 
+  /**
+   * The Nyquist frequency omega_N = pi / (mean edge length) of the input of the last execution
+   * (a result, like the slider ranges; 0 before the first execution or without a triangle of
+   * finite size). It bounds the re-injection and tells the zero eigenvalues of the constant
+   * harmonics from the others.
+   */
+  vtkGetMacro(NyquistFrequency, double);
+
 protected:
   vtkSpectralFilter();
   ~vtkSpectralFilter() override;
@@ -255,8 +263,9 @@ protected:
   double EdgeSums[2] = { 0.0, 0.0 };
   vtkMTimeType EdgeSumsTime = 0;
 
-  double FrequencyRange[2] = { 0.0, 2.0 };
-  double TimeRange[2] = { 0.0, 1.0 };
+  double FrequencyRange[2];
+  double TimeRange[2];
+  double NyquistFrequency = 0.0;
 
 private:
   vtkSpectralFilter(const vtkSpectralFilter&) = delete;
