@@ -3,16 +3,8 @@
 // Spectral filtering of a surface mesh: basis -> transform -> filter -> .vtp.
 //
 //   ManifoldHarmonicFilter input.(ply|obj|stl|vtp) output.vtp [options]
-//     --harmonics m     number of harmonics (default 100)
-//     --kind k          lowpass, highpass, bandpass, bandstop, enhancement, exaggeration, heat,
-//                       custom: a ramp from gain 1 at 0 to 0 at the cutoff (default lowpass)
-//     --cutoff w        cutoff frequency (default: half the highest computed frequency)
-//     --upper w         upper band edge (default: 2 x cutoff)
-//     --gain g          gain of enhancement and exaggeration (default 2)
-//     --time t          heat diffusion time (default ln 2 / cutoff^2, where the gain at the
-//                       cutoff is 1/2)
-//     --no-reinject     drop the frequencies above the last harmonic
-//     --help            this text
+//
+// The options and their defaults are in OptionsHelp below (printed by --help).
 //
 // The filtered coordinates replace the points; the output also holds the basis arrays and the
 // coefficients of the points. Run by CTest on Testing/Data/bunny.ply.
@@ -62,6 +54,7 @@ struct Options
 };
 
 const char* const OptionsHelp =
+  "  --help          this text\n"
   "  --harmonics m   number of harmonics (default 100)\n"
   "  --kind k        lowpass, highpass, bandpass, bandstop, enhancement, exaggeration, heat,\n"
   "                  custom: a ramp from gain 1 at 0 to 0 at the cutoff (default lowpass)\n"
