@@ -25,10 +25,10 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkVersionMacros.h"
 
-#include "Spectral/EigenSolver.h"
-#include "Spectral/IntrinsicDelaunay.h"
-#include "Spectral/Memory.h"
-#include "Spectral/Operators.h"
+#include "Spectral/Solver/EigenSolver.h"
+#include "Spectral/Operators/IntrinsicDelaunay.h"
+#include "Spectral/Solver/Memory.h"
+#include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -293,7 +293,7 @@ std::string Bytes(std::uint64_t bytes)
 }
 
 //------------------------------------------------------------------------------
-// Compares the memory estimate of the computation (Spectral/Memory.h) with the MemoryLimit, or
+// Compares the memory estimate of the computation (Spectral/Solver/Memory.h) with the MemoryLimit, or
 // with the memory the system reports available. Returns the error message when it does not fit
 // (what is needed, what is available, what to change), otherwise an empty string.
 std::string MemoryProblem(

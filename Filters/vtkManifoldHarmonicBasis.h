@@ -37,7 +37,7 @@
  *
  * Memory: before it assembles anything, the filter estimates the memory the computation needs
  * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
- * formula in Filters/Spectral/Memory.h) and fails with an error saying how much is needed, how
+ * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed, how
  * much is available and what to change if it does not fit, instead of being killed by the
  * system during a long solve.
  *
@@ -47,7 +47,7 @@
  *
  * The eigenproblem is solved band by band with shift-invert block Lanczos iterations on sparse
  * LDL^T factorizations of L - sigma M (CHOLMOD); the inertia of each factorization proves that
- * no eigenpair was missed (see Filters/Spectral/EigenSolver.h). The filter reports progress during
+ * no eigenpair was missed (see Filters/Spectral/Solver/EigenSolver.h). The filter reports progress during
  * the solve and honours AbortExecute: an aborted execution leaves the output empty.
  *
  * Distributed runs (MPI: pvbatch, pvserver): when the global controller has several processes
@@ -234,7 +234,7 @@ public:
   /**
    * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
    * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
-   * physical pages elsewhere). When the estimate of Filters/Spectral/Memory.h exceeds it, the
+   * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it, the
    * filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
    * FLOAT or a smaller BandSize) and produces an empty output. Set a limit to keep room for other
    * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.

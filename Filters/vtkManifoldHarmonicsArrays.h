@@ -12,7 +12,7 @@
 #ifndef vtkManifoldHarmonicsArrays_h
 #define vtkManifoldHarmonicsArrays_h
 
-#include "Spectral/Transfer.h"
+#include "Spectral/Filtering/Transfer.h"
 
 #include "vtkSmartPointer.h"
 

@@ -17,7 +17,7 @@
 #ifndef vtkManifoldHarmonicsParallel_h
 #define vtkManifoldHarmonicsParallel_h
 
-#include "Spectral/Transfer.h"
+#include "Spectral/Filtering/Transfer.h"
 
 #include "vtkSmartPointer.h"
 

@@ -20,7 +20,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
-#include "Spectral/Operators.h"
+#include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
 #include <cmath>

@@ -19,10 +19,10 @@
  *        [--scipy-max-n N] [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
-#include "BenchMeshes.h"
-#include "EigenSolver.h"
-#include "Operators.h"
-#include "Transfer.h"
+#include "Meshes.h"
+#include "Solver/EigenSolver.h"
+#include "Operators/Operators.h"
+#include "Filtering/Transfer.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -184,7 +184,7 @@ std::string FilterStageColumn(const spectral::TriangleMesh& mesh,
 /// One case, run in the child process. Prints its row and returns an exit code.
 int RunCase(const Settings& settings, int n, int m)
 {
-  const spectral::TriangleMesh mesh = spectral::bench::NoisyTorusOfSize(n, 0.02);
+  const spectral::TriangleMesh mesh = spectral::testing::NoisyTorusOfSize(n, 0.02);
   const Clock::time_point start = Clock::now();
   const spectral::SparseMatrix L = spectral::CotanStiffness(mesh);
   const spectral::SparseMatrix M = spectral::Diagonal(spectral::LumpedMass(mesh));

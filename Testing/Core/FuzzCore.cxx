@@ -8,10 +8,10 @@
 // Allowed outcomes are a documented exception (InvalidInput, SolverFailure) or a result that is
 // finite and has the promised shape; anything else aborts, and so does a sanitizer report.
 // Built by Testing/Core/CMakeLists.txt with MANIFOLDHARMONICS_FUZZ=ON; run by scripts/test.sh.
-#include "EigenSolver.h"
-#include "IntrinsicDelaunay.h"
-#include "Operators.h"
-#include "Transfer.h"
+#include "Solver/EigenSolver.h"
+#include "Operators/IntrinsicDelaunay.h"
+#include "Operators/Operators.h"
+#include "Filtering/Transfer.h"
 
 #include <cmath>
 #include <cstddef>

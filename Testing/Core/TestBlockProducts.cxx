@@ -1,10 +1,10 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the narrow block products (Filters/Spectral/BlockProducts.h): they equal the
+// Properties of the narrow block products (Filters/Spectral/Solver/BlockProducts.h): they equal the
 // general products B^T A and A - B C for every width, for bases that are the leading columns of a
 // larger matrix, on one thread and on two; projecting a block out of an orthonormal basis
 // leaves it orthogonal to the basis; and the symmetric sparse product equals Eigen's.
-#include "BlockProducts.h"
+#include "Solver/BlockProducts.h"
 #include "Checks.h"
 
 #include <Eigen/Dense>

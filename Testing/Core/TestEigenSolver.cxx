@@ -1,13 +1,12 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the generalized eigensolver (Filters/Spectral/EigenSolver.h) on meshes with a
+// Properties of the generalized eigensolver (Filters/Spectral/Solver/EigenSolver.h) on meshes with a
 // known spectrum: the unit sphere (l(l+1), multiplicity 2l+1), the free a x b rectangle
 // (pi^2 (i^2/a^2 + j^2/b^2)), and disjoint components (one zero eigenvalue each).
-#include "BenchMeshes.h"
 #include "Checks.h"
-#include "EigenSolver.h"
+#include "Solver/EigenSolver.h"
 #include "Meshes.h"
-#include "Operators.h"
+#include "Operators/Operators.h"
 
 #include <Eigen/Dense>
 
@@ -292,7 +291,7 @@ void RefinedBands()
   // the tube radius (fixed seed). The Lanczos iteration alone leaves residuals above 1e-11 on
   // it (without the refinement of the bands' vectors the first band verifies none of its pairs
   // at this tolerance); with the refinement every pair must meet it.
-  const TriangleMesh mesh = bench::NoisyTorus(240, 84, 0.2);
+  const TriangleMesh mesh = testing::NoisyTorus(240, 84, 0.2);
   const Problem p = Lumped(mesh);
   const int m = 120;
   EigenOptions tight;

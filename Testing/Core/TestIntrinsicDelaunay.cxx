@@ -1,11 +1,11 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the intrinsic Delaunay Laplacian (Filters/Spectral/IntrinsicDelaunay.h).
+// Properties of the intrinsic Delaunay Laplacian (Filters/Spectral/Operators/IntrinsicDelaunay.h).
 #include "Checks.h"
-#include "EigenSolver.h"
-#include "IntrinsicDelaunay.h"
+#include "Solver/EigenSolver.h"
+#include "Operators/IntrinsicDelaunay.h"
 #include "Meshes.h"
-#include "Operators.h"
+#include "Operators/Operators.h"
 
 #include <algorithm>
 #include <random>

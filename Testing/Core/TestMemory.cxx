@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 // The memory estimate of a basis computation and the available memory
-// (Filters/Spectral/Memory.h).
+// (Filters/Spectral/Solver/Memory.h).
 #include "Checks.h"
-#include "Memory.h"
+#include "Solver/Memory.h"
 
 #include <string>
 

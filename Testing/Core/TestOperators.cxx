@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the cotan stiffness and the mass matrices (Filters/Spectral/Operators.h).
+// Properties of the cotan stiffness and the mass matrices (Filters/Spectral/Operators/Operators.h).
 #include "Checks.h"
 #include "Meshes.h"
-#include "Operators.h"
+#include "Operators/Operators.h"
 
 #include <Eigen/Geometry>
 

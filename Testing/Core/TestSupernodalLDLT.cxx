@@ -1,12 +1,12 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the supernodal LDL^T factorization (Filters/Spectral/SupernodalLDLT.h): solves
+// Properties of the supernodal LDL^T factorization (Filters/Spectral/Solver/SupernodalLDLT.h): solves
 // agree with the matrix and with Eigen's own simplicial LDL^T, the pivots count the eigenvalues
 // below a shift (checked against a dense eigensolver), zero pivots are reported.
 #include "Checks.h"
 #include "Meshes.h"
-#include "Operators.h"
-#include "SupernodalLDLT.h"
+#include "Operators/Operators.h"
+#include "Solver/SupernodalLDLT.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>

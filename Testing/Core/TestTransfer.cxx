@@ -1,13 +1,13 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 // Properties of the manifold harmonic transform and the transfer functions
-// (Filters/Spectral/Transfer.h).
+// (Filters/Spectral/Filtering/Transfer.h).
 #include "Checks.h"
-#include "EigenSolver.h"
+#include "Solver/EigenSolver.h"
 #include "Meshes.h"
-#include "Operators.h"
-#include "Threads.h"
-#include "Transfer.h"
+#include "Operators/Operators.h"
+#include "Common/Threads.h"
+#include "Filtering/Transfer.h"
 
 #include <atomic>
 #include <initializer_list>

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "SupernodalLDLT.h"
+#include "Solver/SupernodalLDLT.h"
 
 #include <cholmod.h>
 

@@ -22,7 +22,7 @@
 #ifndef spectral_BlockProducts_h
 #define spectral_BlockProducts_h
 
-#include "Mesh.h"
+#include "Common/Mesh.h"
 
 namespace spectral
 {

@@ -27,8 +27,8 @@
 #ifndef spectral_IntrinsicDelaunay_h
 #define spectral_IntrinsicDelaunay_h
 
-#include "Mesh.h"
-#include "Monitor.h"
+#include "Common/Mesh.h"
+#include "Common/Monitor.h"
 
 namespace spectral
 {

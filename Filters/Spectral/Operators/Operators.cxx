@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "Operators.h"
+#include "Operators/Operators.h"
 
 #include <Eigen/Geometry>
 

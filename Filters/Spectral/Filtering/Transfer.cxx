@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "Transfer.h"
+#include "Filtering/Transfer.h"
 
-#include "Operators.h"
-#include "Threads.h"
+#include "Operators/Operators.h"
+#include "Common/Threads.h"
 
 #include <algorithm>
 #include <array>

@@ -7,7 +7,7 @@
 #ifndef spectral_Monitor_h
 #define spectral_Monitor_h
 
-#include "Mesh.h"
+#include "Common/Mesh.h"
 
 #include <functional>
 

@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "IntrinsicDelaunay.h"
-#include "Operators.h"
+#include "Operators/IntrinsicDelaunay.h"
+#include "Operators/Operators.h"
 
 #include <algorithm>
 #include <array>

@@ -21,8 +21,8 @@
 #ifndef spectral_EigenSolver_h
 #define spectral_EigenSolver_h
 
-#include "Mesh.h"
-#include "Monitor.h"
+#include "Common/Mesh.h"
+#include "Common/Monitor.h"
 
 namespace spectral
 {

@@ -26,7 +26,7 @@
 #ifndef spectral_Transfer_h
 #define spectral_Transfer_h
 
-#include "Mesh.h"
+#include "Common/Mesh.h"
 
 #include <utility>
 #include <vector>

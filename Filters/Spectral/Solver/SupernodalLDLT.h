@@ -23,7 +23,7 @@
 #ifndef spectral_SupernodalLDLT_h
 #define spectral_SupernodalLDLT_h
 
-#include "Mesh.h"
+#include "Common/Mesh.h"
 
 #include <cstddef>
 #include <vector>

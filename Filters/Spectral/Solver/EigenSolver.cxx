@@ -1,10 +1,10 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "EigenSolver.h"
-#include "BlockProducts.h"
-#include "Memory.h"
-#include "SupernodalLDLT.h"
-#include "Threads.h"
+#include "Solver/EigenSolver.h"
+#include "Solver/BlockProducts.h"
+#include "Solver/Memory.h"
+#include "Solver/SupernodalLDLT.h"
+#include "Common/Threads.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>

@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "BlockProducts.h"
-#include "Threads.h"
+#include "Solver/BlockProducts.h"
+#include "Common/Threads.h"
 
 #include <algorithm>
 #include <type_traits>

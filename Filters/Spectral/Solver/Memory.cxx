@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-#include "Memory.h"
+#include "Solver/Memory.h"
 
 #include <algorithm>
 #include <fstream>

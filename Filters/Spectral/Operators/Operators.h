@@ -13,7 +13,7 @@
 #ifndef spectral_Operators_h
 #define spectral_Operators_h
 
-#include "Mesh.h"
+#include "Common/Mesh.h"
 
 #include <vector>
 
