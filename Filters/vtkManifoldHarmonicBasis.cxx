@@ -25,10 +25,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkVersionMacros.h"
 
-#include "Spectral/Solver/EigenSolver.h"
-#include "Spectral/Operators/IntrinsicDelaunay.h"
-#include "Spectral/Solver/Memory.h"
-#include "Spectral/Operators/Operators.h"
+#include "Spectral/Basis.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -193,43 +190,6 @@ spectral::TriangleMesh ToTriangleMesh(vtkPolyData* surface)
 }
 
 //------------------------------------------------------------------------------
-// Warns about what PrepareMesh left out and about several components; returns the number of
-// harmonics to compute, clamped to the number of usable points.
-int CheckPreparedMesh(vtkManifoldHarmonicBasis* self,
-  const spectral::PreparedMesh& prepared,
-  int requested)
-{
-  if (prepared.DegenerateTriangles > 0)
-  {
-    vtkWarningWithObjectMacro(
-      self, << "Left out " << prepared.DegenerateTriangles << " degenerate (zero-area) triangles.");
-  }
-  if (prepared.UnusedPoints > 0)
-  {
-    vtkWarningWithObjectMacro(self,
-      << prepared.UnusedPoints
-      << (prepared.UnusedPoints == 1 ? " point is used by no triangle; its harmonics are 0."
-                                     : " points are used by no triangle; their harmonics are 0."));
-  }
-  const int components = spectral::ConnectedComponents(prepared.Mesh);
-  if (components > 1)
-  {
-    vtkWarningWithObjectMacro(self,
-      << "The surface has " << components << " connected components: the first " << components
-      << " eigenvalues are zero.");
-  }
-  const int usable = static_cast<int>(prepared.Mesh.Vertices.rows());
-  if (requested > usable)
-  {
-    vtkWarningWithObjectMacro(self,
-      << "NumberOfHarmonics " << requested << " clamped to " << usable
-      << ", the number of points triangles use.");
-    return usable;
-  }
-  return requested;
-}
-
-//------------------------------------------------------------------------------
 // The arrays of a distributed run on the output of one process: its rows of the harmonics and
 // mass, the eigenvalues, and DUPLICATEPOINT flags (added to any ghost array of the input) on
 // the points that a lower process also holds. The harmonics are converted to floats when
@@ -293,31 +253,21 @@ std::string Bytes(std::uint64_t bytes)
 }
 
 //------------------------------------------------------------------------------
-// Compares the memory estimate of the computation (Spectral/Solver/Memory.h) with the MemoryLimit, or
-// with the memory the system reports available. Returns the error message when it does not fit
-// (what is needed, what is available, what to change), otherwise an empty string.
+// The error message of a computation that does not fit in memory: what is needed, what is
+// available, what to change.
 std::string MemoryProblem(
-  vtkManifoldHarmonicBasis* self, vtkIdType numPts, Eigen::Index used, int m)
+  vtkManifoldHarmonicBasis* self, vtkIdType numPts, const spectral::InsufficientMemory& e)
 {
+  const int m = e.Harmonics;
   const bool floats = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT;
-  const spectral::MemoryEstimate need =
-    spectral::EstimateBasisMemory(static_cast<std::uint64_t>(numPts),
-      static_cast<std::uint64_t>(used), m, self->GetBandSize(), floats ? 4 : 8);
   const bool limited = self->GetMemoryLimit() > 0.0;
-  // A limit below one byte still limits (0 would mean "the system does not say").
-  const std::uint64_t available = limited
-    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
-    : spectral::AvailableMemory();
-  if (available == 0 || need.Total() <= available)
-  {
-    return std::string(); // fits, or the system does not say
-  }
+  const spectral::MemoryEstimate& need = e.Needed;
   std::ostringstream message;
   message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
           << Bytes(need.Total()) << " needed (basis " << Bytes(need.Basis)
           << ", solver eigenvectors " << Bytes(need.Eigenvectors) << ", Lanczos workspace "
           << Bytes(need.Krylov) << ", sparse factor " << Bytes(need.Factor) << "), "
-          << Bytes(available) << " available ("
+          << Bytes(e.Available) << " available ("
           << (limited ? "MemoryLimit" : "reported by the system") << "). Compute fewer harmonics";
   if (!floats)
   {
@@ -330,119 +280,39 @@ std::string MemoryProblem(
 }
 
 //------------------------------------------------------------------------------
-// The stiffness L, the mass M of the eigenproblem and the lumped mass written to the output.
-struct Operators
+// The settings of the filter as options of the core's entry point.
+spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
 {
-  spectral::SparseMatrix L;
-  spectral::SparseMatrix M;
-  spectral::Vector Lumped;
-};
-
-//------------------------------------------------------------------------------
-// Assembles the chosen Laplacian. The intrinsic Delaunay one warns about edges it could not
-// make Delaunay (non-manifold edges are never flipped).
-Operators AssembleOperators(vtkManifoldHarmonicBasis* self,
-  const spectral::TriangleMesh& mesh,
-  const spectral::Monitor& monitor)
-{
-  Operators ops;
-  const bool consistent = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT;
-  if (self->GetLaplacian() == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY)
-  {
-    const spectral::IntrinsicTriangulation T = spectral::IntrinsicDelaunay(mesh, monitor);
-    if (T.UnflippableEdges > 0 || T.NonDelaunayEdges > 0)
-    {
-      vtkWarningWithObjectMacro(self,
-        << "Intrinsic Delaunay: " << T.UnflippableEdges
-        << " non-manifold or non-orientable edges were not flipped and " << T.NonDelaunayEdges
-        << " edges are still not Delaunay; their cotangent weights may be negative.");
-    }
-    ops.L = spectral::IntrinsicCotanStiffness(T);
-    ops.Lumped = spectral::IntrinsicLumpedMass(T);
-    ops.M = consistent ? spectral::IntrinsicConsistentMass(T) : spectral::Diagonal(ops.Lumped);
-    return ops;
-  }
-  ops.L = spectral::CotanStiffness(mesh);
-  ops.Lumped = spectral::LumpedMass(mesh);
-  ops.M = consistent ? spectral::ConsistentMass(mesh) : spectral::Diagonal(ops.Lumped);
-  return ops;
+  spectral::BasisOptions options;
+  options.NumberOfHarmonics = self->GetNumberOfHarmonics();
+  options.Operators.Laplacian = self->GetLaplacian() == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY
+    ? spectral::LaplacianKind::IntrinsicDelaunay
+    : spectral::LaplacianKind::Cotangent;
+  options.Operators.Mass = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT
+    ? spectral::MassKind::Consistent
+    : spectral::MassKind::Lumped;
+  options.Solver.BandSize = self->GetBandSize();
+  options.Solver.Tolerance = self->GetTolerance();
+  options.Solver.MaxIterations = self->GetMaxIterations();
+  options.BytesPerValue = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT ? 4 : 8;
+  // A limit below one byte still limits (0 would mean "ask the system").
+  options.MemoryLimit = self->GetMemoryLimit() > 0.0
+    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
+    : 0;
+  return options;
 }
 
 //------------------------------------------------------------------------------
-// The relative residual eigenpairs can meet in double precision. Round-off in L h is about
-// eps lambda_max, measured against the lowest frequencies; lambda_max comes from Gershgorin's
-// bound on M^-1 L (lumped mass), the lowest frequency from the size of the surface, (pi / d)^2
-// with d the bounding-box diagonal. Sets `ratio` to lambda_max / lambda_low.
-double AchievableResidual(const spectral::SparseMatrix& L,
-  const spectral::Vector& lumped,
-  const spectral::TriangleMesh& mesh,
-  double& ratio)
+// A monitor that reports the core's progress, steps and warnings through the filter and polls
+// its abort flag. The core's progress [0, 1] becomes [0, 0.95]; writing the arrays is the rest.
+spectral::Monitor FilterMonitor(vtkManifoldHarmonicBasis* self)
 {
-  double top = 0.0;
-  for (int j = 0; j < L.outerSize(); ++j)
-  {
-    const double sum = L.col(j).cwiseAbs().sum();
-    top = std::max(top, lumped[j] > 0.0 ? sum / lumped[j] : 0.0);
-  }
-  const double pi = 3.14159265358979323846;
-  const double d =
-    (mesh.Vertices.colwise().maxCoeff() - mesh.Vertices.colwise().minCoeff()).norm();
-  ratio = top * d * d / (pi * pi);
-  return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
-}
-
-//------------------------------------------------------------------------------
-// SmallestEigenpairs with two fallbacks. A single pair is computed as the first of two: alone,
-// the zero eigenvalue gives the residual test no frequency scale. When the solver fails on
-// operators too badly conditioned for its residual tolerance (needle or tiny triangles give
-// lambda_max / lambda_1 above 10^8), it is run again with the tolerance that double precision
-// allows, with a warning; beyond 1e-4 the eigenpairs would be meaningless: error.
-spectral::EigenResult SolveSmallest(vtkManifoldHarmonicBasis* self,
-  const spectral::SparseMatrix& L,
-  const spectral::SparseMatrix& M,
-  const spectral::Vector& lumped,
-  const spectral::TriangleMesh& mesh,
-  spectral::EigenOptions options,
-  const spectral::Monitor& monitor)
-{
-  const int wanted = options.NumberOfEigenpairs;
-  options.NumberOfEigenpairs = (wanted == 1 && L.rows() > 1) ? 2 : wanted;
-  spectral::EigenResult result;
-  try
-  {
-    result = spectral::SmallestEigenpairs(L, M, options, monitor);
-  }
-  catch (const spectral::SolverFailure& e)
-  {
-    double ratio = 0.0;
-    const double achievable = AchievableResidual(L, lumped, mesh, ratio);
-    if (!(achievable > options.ResidualTolerance))
-    {
-      throw;
-    }
-    std::ostringstream why;
-    why << "the operators are badly conditioned (largest / lowest eigenvalue about " << ratio
-        << ", from needle, sliver or tiny triangles)";
-    if (achievable > 1e-4)
-    {
-      throw spectral::SolverFailure(std::string(e.what()) + "; " + why.str() +
-          " beyond what double precision resolves: remove them (merge close points, e.g. with "
-          "vtkCleanPolyData and a tolerance) or remesh",
-        e.Converged);
-    }
-    vtkWarningWithObjectMacro(self,
-      << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
-      << options.ResidualTolerance << ": " << why.str()
-      << ". Laplacian = Intrinsic Delaunay or remeshing improves this.");
-    options.ResidualTolerance = achievable;
-    result = spectral::SmallestEigenpairs(L, M, options, monitor);
-  }
-  if (result.Eigenvalues.size() > wanted)
-  {
-    result.Eigenvalues.conservativeResize(wanted);
-    result.Eigenvectors.conservativeResize(Eigen::NoChange, wanted);
-  }
-  return result;
+  spectral::Monitor monitor;
+  monitor.Progress = [self](double fraction) { self->UpdateProgress(0.95 * fraction); };
+  monitor.Cancelled = [self]() { return self->GetAbortExecute() != 0; };
+  monitor.Stage = [self](const char* stage) { self->SetProgressText(stage); };
+  monitor.Warning = [self](const std::string& text) { vtkWarningWithObjectMacro(self, << text); };
+  return monitor;
 }
 } // anonymous namespace
 
@@ -559,61 +429,19 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
 
   try
   {
-    // Validate and convert.
-    this->SetProgressText("Assemble");
     vtkSmartPointer<vtkPolyData> surface = ::Triangulate(this, input);
-    const spectral::PreparedMesh prepared = spectral::PrepareMesh(::ToTriangleMesh(surface));
-    if (prepared.Mesh.Vertices.rows() == 0)
-    {
-      vtkErrorMacro(<< "Every triangle of the input is degenerate (zero area).");
-      return 0;
-    }
-    const int m = ::CheckPreparedMesh(this, prepared, this->NumberOfHarmonics);
-    const std::string memory = ::MemoryProblem(this, numPts, prepared.Mesh.Vertices.rows(), m);
-    if (!memory.empty())
-    {
-      vtkErrorMacro(<< memory);
-      output->Initialize();
-      return 0;
-    }
-
-    // Assemble the operators.
-    spectral::Monitor cancel;
-    cancel.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
-    const ::Operators ops = ::AssembleOperators(this, prepared.Mesh, cancel);
-    const spectral::SparseMatrix& L = ops.L;
-    const spectral::Vector& lumped = ops.Lumped;
-    const spectral::SparseMatrix& M = ops.M;
-    this->UpdateProgress(0.1);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-
-    // Solve.
-    this->SetProgressText("Eigensolve");
-    spectral::EigenOptions options;
-    options.NumberOfEigenpairs = m;
-    options.BandSize = this->BandSize;
-    options.Tolerance = this->Tolerance;
-    options.MaxIterations = this->MaxIterations;
-    spectral::Monitor monitor;
-    monitor.Progress = [this](double fraction) { this->UpdateProgress(0.1 + 0.85 * fraction); };
-    monitor.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
-    const spectral::EigenResult result =
-      ::SolveSmallest(this, L, M, lumped, prepared.Mesh, options, monitor);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-
-    // Write the arrays.
+    const spectral::BasisResult basis =
+      spectral::ComputeBasis(::ToTriangleMesh(surface), ::CoreOptions(this), ::FilterMonitor(this));
     this->SetProgressText("Write");
     output->ShallowCopy(input);
-    ::AddBasisArrays(
-      output, result, prepared.InputPointIds, lumped, this->BasisPrecision == FLOAT);
+    ::AddBasisArrays(output, basis.Pairs, basis.InputPointIds, basis.LumpedMass,
+      this->BasisPrecision == FLOAT);
     this->UpdateProgress(1.0);
     return 1;
+  }
+  catch (const spectral::InsufficientMemory& e)
+  {
+    vtkErrorMacro(<< ::MemoryProblem(this, numPts, e));
   }
   catch (const spectral::Cancelled&)
   {

@@ -2,11 +2,14 @@
 # (Filters/CMakeLists.txt), by the core's own build without VTK (Testing/Core/CMakeLists.txt) and,
 # through the core library of that build, by the benchmark (bench/).
 #
-#   Common/      types, progress and cancellation, threads: what every part uses
+#   Basis.h      the one entry point: mesh + options + monitor -> verified basis
+#   Common/      types, defaults, progress and cancellation, threads: what every part uses
 #   Operators/   the discrete Laplacians of each kind of mesh (stiffness, mass, what was left out)
 #   Solver/      the eigensolver behind one interface: factorizations, bands, verification
 #   Filtering/   transforms, filter gains and the re-injection of what the basis misses
 set(spectral_core_sources
+  Basis.cxx
+  Operators/Laplacian.cxx
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx
   Solver/EigenSolver.cxx
@@ -16,6 +19,9 @@ set(spectral_core_sources
   Filtering/Transfer.cxx
   )
 set(spectral_core_headers
+  Basis.h
+  Common/Defaults.h
+  Operators/Laplacian.h
   Common/Mesh.h
   Common/Monitor.h
   Common/Threads.h

@@ -3,16 +3,16 @@
 // libFuzzer target over the spectral core. The input bytes decode into a small triangle soup
 // (coordinates on a coarse grid with occasional zero, tiny, huge and non-finite values;
 // triangles with arbitrary, possibly repeated or out-of-range indices), which then goes through
-// PrepareMesh, both Laplacians, SmallestEigenpairs with a small m, and a filter round trip.
+// ComputeBasis (the filter's whole computation: PrepareMesh, either Laplacian, the eigensolver
+// and its fallbacks) with a small m, and a filter round trip.
 //
 // Allowed outcomes are a documented exception (InvalidInput, SolverFailure) or a result that is
 // finite and has the promised shape; anything else aborts, and so does a sanitizer report.
 // Built by Testing/Core/CMakeLists.txt with MANIFOLDHARMONICS_FUZZ=ON; run by scripts/test.sh.
-#include "Solver/EigenSolver.h"
-#include "Operators/IntrinsicDelaunay.h"
-#include "Operators/Operators.h"
+#include "Basis.h"
 #include "Filtering/Transfer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -102,60 +102,33 @@ spectral::TriangleMesh Decode(Reader& in)
 void Run(Reader& in)
 {
   const spectral::TriangleMesh input = Decode(in);
-  spectral::PreparedMesh prepared;
+  // The whole computation of vtkManifoldHarmonicBasis: the core's one entry point.
+  spectral::BasisOptions options;
+  options.Operators.Laplacian = (in.Byte() & 1) != 0 ? spectral::LaplacianKind::IntrinsicDelaunay
+                                                     : spectral::LaplacianKind::Cotangent;
+  options.NumberOfHarmonics = 1 + in.Byte() % 6;
+  options.Solver.BandSize = in.Byte() % 4;
+  options.Solver.DenseThreshold = (in.Byte() & 1) ? 1000 : 0;
+  spectral::BasisResult basis;
   try
   {
-    prepared = spectral::PrepareMesh(input);
+    basis = spectral::ComputeBasis(input, options);
   }
   catch (const spectral::InvalidInput&)
   {
     return;
-  }
-  const spectral::TriangleMesh& mesh = prepared.Mesh;
-  const int n = static_cast<int>(mesh.Vertices.rows());
-  Require(prepared.UnusedPoints + n == input.Vertices.rows(), "point count");
-  if (n == 0)
-  {
-    return;
-  }
-
-  const bool intrinsic = (in.Byte() & 1) != 0;
-  spectral::SparseMatrix L;
-  spectral::Vector lumped;
-  if (intrinsic)
-  {
-    const spectral::IntrinsicTriangulation T = spectral::IntrinsicDelaunay(mesh);
-    Require(T.Faces.rows() == mesh.Faces.rows(), "flips keep the number of triangles");
-    L = spectral::IntrinsicCotanStiffness(T);
-    lumped = spectral::IntrinsicLumpedMass(T);
-  }
-  else
-  {
-    L = spectral::CotanStiffness(mesh);
-    lumped = spectral::LumpedMass(mesh);
-  }
-  Require(L.rows() == n && L.cols() == n && lumped.size() == n, "operator sizes");
-  Require(L.coeffs().allFinite() && lumped.allFinite(), "finite operators");
-  Require((lumped.array() > 0.0).all(), "every used point has mass");
-
-  spectral::EigenOptions options;
-  options.NumberOfEigenpairs = 1 + in.Byte() % std::min(n, 6);
-  options.BandSize = in.Byte() % 4;
-  options.DenseThreshold = (in.Byte() & 1) ? 1000 : 0;
-  spectral::EigenResult result;
-  try
-  {
-    result = spectral::SmallestEigenpairs(L, spectral::Diagonal(lumped), options);
   }
   catch (const spectral::SolverFailure&)
   {
     return;
   }
-  catch (const spectral::InvalidInput&)
-  {
-    return;
-  }
-  const int m = options.NumberOfEigenpairs;
+  const spectral::EigenResult& result = basis.Pairs;
+  const int n = static_cast<int>(basis.InputPointIds.size());
+  const spectral::Vector& lumped = basis.LumpedMass;
+  Require(n > 0 && n <= input.Vertices.rows(), "point count");
+  Require(lumped.size() == n && lumped.allFinite(), "finite mass of every used point");
+  Require((lumped.array() > 0.0).all(), "every used point has mass");
+  const int m = static_cast<int>(std::min<Eigen::Index>(options.NumberOfHarmonics, n));
   Require(result.Eigenvalues.size() == m && result.Eigenvectors.rows() == n &&
       result.Eigenvectors.cols() == m,
     "eigenpair shapes");
@@ -164,10 +137,15 @@ void Run(Reader& in)
   {
     Require(result.Eigenvalues[k] >= result.Eigenvalues[k - 1], "ascending eigenvalues");
   }
+  spectral::Points used(n, 3);
+  for (int r = 0; r < n; ++r)
+  {
+    used.row(r) = input.Vertices.row(basis.InputPointIds[static_cast<std::size_t>(r)]);
+  }
 
   // Low-pass round trip of the coordinates through the basis.
   const spectral::RowMatrix H = result.Eigenvectors;
-  const spectral::RowMatrix X = mesh.Vertices;
+  const spectral::RowMatrix X = used;
   const spectral::BasisView view(H.data(), H.rows(), H.cols());
   const spectral::ConstRowView signal(X.data(), X.rows(), X.cols());
   const spectral::RowMatrix coefficients = spectral::ForwardTransform(view, lumped, signal);

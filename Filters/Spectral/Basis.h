@@ -1,0 +1,101 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Basis.h
+ * @brief The one entry point of the spectral core: a mesh and options in, a verified basis out.
+ *
+ * ComputeBasis is the whole algorithm of vtkManifoldHarmonicBasis, without VTK: it keeps the
+ * usable part of the mesh (Operators.h, PrepareMesh), checks the request against the mesh and
+ * the memory (Solver/Memory.h), assembles the chosen operators (Operators/Laplacian.h) and
+ * solves for the smallest eigenpairs (Solver/EigenSolver.h), with the two fallbacks that the
+ * solver alone does not take: a single harmonic is computed as the first of two (alone, the zero
+ * eigenvalue gives the residual test no frequency scale), and operators too badly conditioned
+ * for the residual tolerance are solved again with the tolerance double precision allows, with
+ * a warning. The filter, the benchmark, the fuzzer and the tests all call it, so they all run
+ * the same computation; the VTK layer only converts and reports.
+ *
+ * Tested by Testing/Core/TestBasis.cxx.
+ */
+#ifndef spectral_Basis_h
+#define spectral_Basis_h
+
+#include "Common/Defaults.h"
+#include "Common/Mesh.h"
+#include "Common/Monitor.h"
+#include "Operators/Laplacian.h"
+#include "Solver/EigenSolver.h"
+#include "Solver/Memory.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spectral
+{
+/// What ComputeBasis computes and how.
+struct BasisOptions
+{
+  /// m, the number of harmonics; clamped, with a warning, to the number of usable points.
+  int NumberOfHarmonics = DefaultNumberOfHarmonics;
+  /// The operators.
+  LaplacianOptions Operators;
+  /// The eigensolver's settings; its NumberOfEigenpairs is set from NumberOfHarmonics.
+  EigenOptions Solver;
+  /// Bytes of one value of the caller's output basis (8 double, 4 float): the memory estimate.
+  int BytesPerValue = 8;
+  /// Whether to compare the memory estimate with what is available before assembling.
+  bool CheckMemory = true;
+  /// The memory available in bytes; 0 asks the system (AvailableMemory in Solver/Memory.h).
+  std::uint64_t MemoryLimit = 0;
+};
+
+/// A basis: the eigenpairs of a mesh's operators and the map back to its points.
+struct BasisResult
+{
+  /// m eigenvalues ascending and the #used by m harmonics (M-orthonormal), with the solver's
+  /// statistics (residual, bands, factorizations, timings).
+  EigenResult Pairs;
+  /// The lumped mass of each used point (the transform's weights).
+  Vector LumpedMass;
+  /// For each row of Pairs.Eigenvectors and LumpedMass, the input point it belongs to; the
+  /// input points not listed have zero harmonics and mass.
+  std::vector<int> InputPointIds;
+  /// Number of connected components (one zero eigenvalue each).
+  int Components = 0;
+  /// Every warning that Monitor::Warning received, in order.
+  std::vector<std::string> Warnings;
+  /// Seconds spent preparing the mesh and assembling the operators.
+  double AssemblySeconds = 0.0;
+};
+
+/// Thrown by ComputeBasis when the memory estimate exceeds what is available.
+class InsufficientMemory : public std::runtime_error
+{
+public:
+  InsufficientMemory(const MemoryEstimate& needed, std::uint64_t available, int harmonics);
+  /// The number of harmonics the estimate is for (after clamping).
+  int Harmonics;
+  /// The estimate of the computation.
+  MemoryEstimate Needed;
+  /// The memory that was available, in bytes.
+  std::uint64_t Available;
+};
+
+/**
+ * The m smallest eigenpairs of the Laplacian of a triangle mesh.
+ * \param mesh Points and triangles (any; what cannot be used is left out with a warning).
+ * \param options m, operators, solver settings, memory check.
+ * \param monitor Progress in [0, 1] (0.1 at the end of the assembly), cancellation, the names
+ *        of the steps ("Assemble", "Eigensolve") and warnings as soon as they are known.
+ * \throws InvalidInput for an index out of range, a non-finite coordinate on a used point, a
+ *         mesh whose triangles are all degenerate, or NumberOfHarmonics below 1.
+ * \throws InsufficientMemory if the estimate exceeds the available memory.
+ * \throws SolverFailure if no verified basis can be had (see SmallestEigenpairs).
+ * \throws Cancelled if the monitor says so.
+ */
+BasisResult ComputeBasis(const TriangleMesh& mesh,
+  const BasisOptions& options,
+  const Monitor& monitor = Monitor());
+} // namespace spectral
+
+#endif

@@ -1,0 +1,94 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Operators/Laplacian.h"
+
+#include "Operators/IntrinsicDelaunay.h"
+
+#include <string>
+
+namespace spectral
+{
+namespace
+{
+//------------------------------------------------------------------------------
+// Bounding-box diagonal of the points.
+double Diagonal(const Points& points)
+{
+  if (points.rows() == 0)
+  {
+    return 0.0;
+  }
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+//------------------------------------------------------------------------------
+// The intrinsic Delaunay operators, with a warning about the edges that could not be flipped.
+void AssembleIntrinsic(const TriangleMesh& mesh,
+  bool consistent,
+  const Monitor& monitor,
+  DiscreteLaplacian& out)
+{
+  const IntrinsicTriangulation T = IntrinsicDelaunay(mesh, monitor);
+  if (T.UnflippableEdges > 0 || T.NonDelaunayEdges > 0)
+  {
+    std::string text = "Intrinsic Delaunay: ";
+    if (T.UnflippableEdges > 0)
+    {
+      text += std::to_string(T.UnflippableEdges) +
+        " non-manifold or non-orientable edges were not flipped";
+    }
+    if (T.NonDelaunayEdges > 0)
+    {
+      text += std::string(T.UnflippableEdges > 0 ? " and " : "") +
+        std::to_string(T.NonDelaunayEdges) + " edges are still not Delaunay";
+    }
+    out.Warnings.push_back(text + "; their cotangent weights may be negative.");
+  }
+  out.Stiffness = IntrinsicCotanStiffness(T);
+  out.LumpedMass = IntrinsicLumpedMass(T);
+  out.Mass = consistent ? IntrinsicConsistentMass(T) : spectral::Diagonal(out.LumpedMass);
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+DiscreteLaplacian AssembleLaplacian(const PreparedMesh& prepared,
+  const LaplacianOptions& options,
+  const Monitor& monitor)
+{
+  DiscreteLaplacian out;
+  const TriangleMesh& mesh = prepared.Mesh;
+  const bool consistent = options.Mass == MassKind::Consistent;
+  if (options.Laplacian == LaplacianKind::IntrinsicDelaunay)
+  {
+    AssembleIntrinsic(mesh, consistent, monitor, out);
+  }
+  else
+  {
+    out.Stiffness = CotanStiffness(mesh);
+    out.LumpedMass = LumpedMass(mesh);
+    out.Mass = consistent ? ConsistentMass(mesh) : spectral::Diagonal(out.LumpedMass);
+  }
+  out.InputPointIds = prepared.InputPointIds;
+  out.Components = ConnectedComponents(mesh);
+  out.Diameter = Diagonal(mesh.Vertices);
+  return out;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> PreparationWarnings(const PreparedMesh& prepared)
+{
+  std::vector<std::string> warnings;
+  if (prepared.DegenerateTriangles > 0)
+  {
+    warnings.push_back("Left out " + std::to_string(prepared.DegenerateTriangles) +
+      " degenerate (zero-area) triangles.");
+  }
+  if (prepared.UnusedPoints > 0)
+  {
+    warnings.push_back(std::to_string(prepared.UnusedPoints) +
+      (prepared.UnusedPoints == 1 ? " point is used by no triangle; its harmonics are 0."
+                                  : " points are used by no triangle; their harmonics are 0."));
+  }
+  return warnings;
+}
+} // namespace spectral
