@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -11,6 +12,16 @@ namespace spectral
 {
 namespace
 {
+//------------------------------------------------------------------------------
+// Passes the warnings on to the monitor and keeps them in the result.
+void Report(const std::vector<std::string>& warnings, const Monitor& monitor, BasisResult& result)
+{
+  for (const std::string& text : warnings)
+  {
+    result.Warnings.push_back(text);
+    monitor.Warn(text);
+  }
+}
 //------------------------------------------------------------------------------
 // Number of harmonics to compute: the request, clamped with a warning to the usable points.
 int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisResult& result)
@@ -50,41 +61,57 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
 //------------------------------------------------------------------------------
 // The relative residual eigenpairs can meet in double precision. Round-off in L h is about
 // eps lambda_max, measured against the lowest frequencies; lambda_max comes from Gershgorin's
-// bound on M^-1 L (lumped mass), the lowest frequency from the size of the surface, (pi / d)^2
-// with d the bounding-box diagonal. Sets `ratio` to lambda_max / lambda_low.
-double AchievableResidual(const DiscreteLaplacian& ops, double& ratio)
+// bound on D^-1 L (D the row sums of M, the lumped mass), the lowest frequency from the size of
+// the surface, (pi / d)^2 with d its diameter. Sets `ratio` to lambda_max / lambda_low.
+double AchievableResidual(const SparseMatrix& L,
+  const SparseMatrix& M,
+  double diameter,
+  double& ratio)
 {
+  const Vector lumped = M * Vector::Ones(M.cols());
   double top = 0.0;
-  const SparseMatrix& L = ops.Stiffness;
   for (int j = 0; j < L.outerSize(); ++j)
   {
     const double sum = L.col(j).cwiseAbs().sum();
-    top = std::max(top, ops.LumpedMass[j] > 0.0 ? sum / ops.LumpedMass[j] : 0.0);
+    top = std::max(top, lumped[j] > 0.0 ? sum / lumped[j] : 0.0);
   }
   const double pi = 3.14159265358979323846;
-  ratio = top * ops.Diameter * ops.Diameter / (pi * pi);
+  ratio = top * diameter * diameter / (pi * pi);
   return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
 }
+
+/// The settings and the state that SolveWithFallbacks shares across components.
+struct Fallbacks
+{
+  EigenOptions Options;
+  /// Diameter of the mesh: the scale of its lowest frequencies.
+  double Diameter = 0.0;
+  const Monitor* Warnings = nullptr;
+  BasisResult* Basis = nullptr;
+  /// Whether the relaxed tolerance was announced (once, whatever the number of components).
+  bool Relaxed = false;
+};
 
 //------------------------------------------------------------------------------
 // SmallestEigenpairs with the two fallbacks of the file documentation of Basis.h. Beyond a
 // residual of 1e-4 the eigenpairs would be meaningless: the failure is passed on with why.
-EigenResult SolveWithFallbacks(const DiscreteLaplacian& ops,
-  EigenOptions options,
+EigenResult SolveWithFallbacks(const SparseMatrix& L,
+  const SparseMatrix& M,
+  int wanted,
   const Monitor& monitor,
-  BasisResult& basis)
+  Fallbacks& state)
 {
-  const int wanted = options.NumberOfEigenpairs;
-  options.NumberOfEigenpairs = (wanted == 1 && ops.Stiffness.rows() > 1) ? 2 : wanted;
+  EigenOptions options = state.Options;
+  options.NumberOfEigenpairs = (wanted == 1 && L.rows() > 1) ? 2 : wanted;
   EigenResult result;
   try
   {
-    result = SmallestEigenpairs(ops.Stiffness, ops.Mass, options, monitor);
+    result = SmallestEigenpairs(L, M, options, monitor);
   }
   catch (const SolverFailure& e)
   {
     double ratio = 0.0;
-    const double achievable = AchievableResidual(ops, ratio);
+    const double achievable = AchievableResidual(L, M, state.Diameter, ratio);
     if (!(achievable > options.ResidualTolerance))
     {
       throw;
@@ -99,14 +126,17 @@ EigenResult SolveWithFallbacks(const DiscreteLaplacian& ops,
           "vtkCleanPolyData and a tolerance) or remesh",
         e.Converged);
     }
-    std::ostringstream text;
-    text << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
-         << options.ResidualTolerance << ": " << why.str()
-         << ". Laplacian = Intrinsic Delaunay or remeshing improves this.";
-    basis.Warnings.push_back(text.str());
-    monitor.Warn(text.str());
+    if (!state.Relaxed)
+    {
+      std::ostringstream text;
+      text << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
+           << options.ResidualTolerance << ": " << why.str()
+           << ". Laplacian = Intrinsic Delaunay or remeshing improves this.";
+      Report({ text.str() }, *state.Warnings, *state.Basis);
+      state.Relaxed = true;
+    }
     options.ResidualTolerance = achievable;
-    result = SmallestEigenpairs(ops.Stiffness, ops.Mass, options, monitor);
+    result = SmallestEigenpairs(L, M, options, monitor);
   }
   if (result.Eigenvalues.size() > wanted)
   {
@@ -117,15 +147,45 @@ EigenResult SolveWithFallbacks(const DiscreteLaplacian& ops,
 }
 
 //------------------------------------------------------------------------------
-// Passes the warnings on to the monitor and keeps them in the result.
-void Report(const std::vector<std::string>& warnings, const Monitor& monitor, BasisResult& result)
+// Warnings about the components, before the solve: how many zero eigenvalues they give, how to
+// weld unwelded seams, and a request for no more harmonics than components.
+void ReportComponents(int components, int m, const Monitor& monitor, BasisResult& result)
 {
-  for (const std::string& text : warnings)
+  if (components <= 1)
   {
-    result.Warnings.push_back(text);
-    monitor.Warn(text);
+    return;
+  }
+  const std::string count = std::to_string(components);
+  Report({ "The surface has " + count + " connected components: the first " + count +
+           " eigenvalues are zero, one for each. If they are pieces of one surface whose "
+           "seams are not welded, merge coincident points first (vtkCleanPolyData, Clean in "
+           "ParaView); leave out small debris with MinimumComponentSize." },
+    monitor,
+    result);
+  if (m <= components)
+  {
+    Report({ "NumberOfHarmonics " + std::to_string(m) + " does not exceed the " + count +
+             " connected components: every harmonic is constant on one component (eigenvalue "
+             "0), so filtering can only move whole components. Ask for more than " +
+             count + " harmonics, or leave out small components with MinimumComponentSize." },
+      monitor,
+      result);
   }
 }
+
+//------------------------------------------------------------------------------
+// The power of two nearest the diameter of the points (1 for a single point): dividing the
+// coordinates by it is exact, and makes the solve independent of the mesh's units.
+double UnitScale(const Points& points)
+{
+  const double diameter = BoundingBoxDiagonal(points);
+  if (!(diameter > 0.0) || !std::isfinite(diameter))
+  {
+    return 1.0;
+  }
+  return std::ldexp(1.0, std::ilogb(diameter));
+}
+
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -149,12 +209,14 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   const Clock::time_point start = Clock::now();
   BasisResult result;
   monitor.Begin("Assemble");
-  const PreparedMesh prepared = PrepareMesh(mesh);
+  PreparedMesh prepared = LeaveOutSmallComponents(PrepareMesh(mesh), options.MinimumComponentSize);
   Report(PreparationWarnings(prepared), monitor, result);
   const Eigen::Index used = prepared.Mesh.Vertices.rows();
   if (used == 0)
   {
-    throw InvalidInput("every triangle of the input is degenerate (zero area)");
+    throw InvalidInput(prepared.SmallComponents > 0
+        ? "every connected component is smaller than MinimumComponentSize"
+        : "every triangle of the input is degenerate (zero area)");
   }
   const int m =
     ClampedHarmonics(options.NumberOfHarmonics, static_cast<int>(used), monitor, result);
@@ -163,26 +225,38 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     CheckMemory(mesh, used, m, options);
   }
 
+  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the harmonics
+  // (M-normalized, M an area) as 1 / s, the mass as s^2.
+  const double s = UnitScale(prepared.Mesh.Vertices);
+  prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);
-  result.Components = ops.Components;
-  if (result.Components > 1)
-  {
-    Report({ "The surface has " + std::to_string(result.Components) +
-             " connected components: the first " + std::to_string(result.Components) +
-             " eigenvalues are zero." },
-      monitor,
-      result);
-  }
+  result.Components = ops.Components.Count;
+  ReportComponents(result.Components, m, monitor, result);
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
   monitor.Report(0.1);
   monitor.ThrowIfCancelled();
 
   monitor.Begin("Eigensolve");
-  EigenOptions solver = options.Solver;
-  solver.NumberOfEigenpairs = m;
-  result.Pairs = SolveWithFallbacks(ops, solver, monitor.Scaled(0.1, 1.0), result);
-  result.LumpedMass = std::move(ops.LumpedMass);
+  Fallbacks state;
+  state.Options = options.Solver;
+  state.Diameter = ops.Diameter;
+  state.Warnings = &monitor;
+  state.Basis = &result;
+  const PairSolver solve =
+    [&state](const SparseMatrix& L, const SparseMatrix& M, int k, const Monitor& part)
+  { return SolveWithFallbacks(L, M, k, part, state); };
+  result.Pairs = SmallestEigenpairsByComponent(ops.Stiffness,
+    ops.Mass,
+    ops.LumpedMass,
+    ops.Components.Label,
+    ops.Components.Count,
+    m,
+    solve,
+    monitor.Scaled(0.1, 1.0));
+  result.Pairs.Eigenvalues /= s * s;
+  result.Pairs.Eigenvectors /= s;
+  result.LumpedMass = ops.LumpedMass * (s * s);
   result.InputPointIds = std::move(ops.InputPointIds);
   return result;
 }

@@ -7,7 +7,10 @@
  * ComputeBasis is the whole algorithm of vtkManifoldHarmonicBasis, without VTK: it keeps the
  * usable part of the mesh (Operators.h, PrepareMesh), checks the request against the mesh and
  * the memory (Solver/Memory.h), assembles the chosen operators (Operators/Laplacian.h) and
- * solves for the smallest eigenpairs (Solver/EigenSolver.h), with the two fallbacks that the
+ * solves for the smallest eigenpairs one connected component at a time (Solver/Components.h,
+ * Solver/EigenSolver.h), in units of the mesh's size (so that the result does not depend on
+ * them: lambda s^2 and the harmonics times s are the same at every scale s), with the two
+ * fallbacks that the
  * solver alone does not take: a single harmonic is computed as the first of two (alone, the zero
  * eigenvalue gives the residual test no frequency scale), and operators too badly conditioned
  * for the residual tolerance are solved again with the tolerance double precision allows, with
@@ -23,6 +26,7 @@
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
 #include "Operators/Laplacian.h"
+#include "Solver/Components.h"
 #include "Solver/EigenSolver.h"
 #include "Solver/Memory.h"
 
@@ -39,6 +43,9 @@ struct BasisOptions
   int NumberOfHarmonics = DefaultNumberOfHarmonics;
   /// The operators.
   LaplacianOptions Operators;
+  /// Connected components of fewer points are left out (zero harmonics and mass, a warning);
+  /// 0 keeps every component.
+  int MinimumComponentSize = 0;
   /// The eigensolver's settings; its NumberOfEigenpairs is set from NumberOfHarmonics.
   EigenOptions Solver;
   /// Bytes of one value of the caller's output basis (8 double, 4 float): the memory estimate.

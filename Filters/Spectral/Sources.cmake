@@ -12,6 +12,7 @@ set(spectral_core_sources
   Operators/Laplacian.cxx
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx
+  Solver/Components.cxx
   Solver/EigenSolver.cxx
   Solver/SupernodalLDLT.cxx
   Solver/BlockProducts.cxx
@@ -27,6 +28,7 @@ set(spectral_core_headers
   Common/Threads.h
   Operators/Operators.h
   Operators/IntrinsicDelaunay.h
+  Solver/Components.h
   Solver/EigenSolver.h
   Solver/SupernodalLDLT.h
   Solver/BlockProducts.h

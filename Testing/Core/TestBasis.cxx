@@ -7,6 +7,11 @@
 #include "Checks.h"
 #include "Meshes.h"
 
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cstdio>
+
 #include <string>
 #include <vector>
 
@@ -211,6 +216,221 @@ void ProgressAndCancellation()
     "a cancel during the solve stops the computation");
 }
 
+//------------------------------------------------------------------------------
+// A sphere of 642 points and `islands` small components beside it: single triangles (3
+// points), octahedra-like icospheres of 12 and 42 points and strips of up to 80 points, each
+// translated away from the others and scaled down (debris of a scan).
+TriangleMesh SphereWithIslands(int islands)
+{
+  TriangleMesh mesh = Icosphere(3);
+  for (int i = 0; i < islands; ++i)
+  {
+    TriangleMesh island;
+    switch (i % 4)
+    {
+      case 0:
+        island.Vertices.resize(3, 3);
+        island.Vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+        island.Faces.resize(1, 3);
+        island.Faces << 0, 1, 2;
+        break;
+      case 1:
+        island = Icosphere(0);
+        break;
+      case 2:
+        island = Icosphere(1);
+        break;
+      default:
+        island = Rectangle(1.0, 0.5, 1 + i % 19, 3); // 2 (nx + 1) .. 80 points
+        break;
+    }
+    island.Vertices *= 0.01 * (1 + i % 7);
+    island.Vertices.rowwise() += Eigen::RowVector3d(3.0 + 0.2 * (i % 20), 0.2 * (i / 20), 0.0);
+    mesh = Join(mesh, island);
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+// The generalized eigenvalues of each component of a mesh, dense, merged ascending.
+Vector UnionOfComponentSpectra(const TriangleMesh& mesh)
+{
+  const PreparedMesh prepared = PrepareMesh(mesh);
+  const DiscreteLaplacian ops = AssembleLaplacian(prepared, LaplacianOptions());
+  const ComponentLabels& labels = ops.Components;
+  std::vector<double> all;
+  for (int c = 0; c < labels.Count; ++c)
+  {
+    std::vector<int> rows;
+    for (std::size_t i = 0; i < labels.Label.size(); ++i)
+    {
+      if (labels.Label[i] == c)
+      {
+        rows.push_back(static_cast<int>(i));
+      }
+    }
+    const Eigen::Index k = static_cast<Eigen::Index>(rows.size());
+    DenseMatrix L = DenseMatrix::Zero(k, k);
+    DenseMatrix M = DenseMatrix::Zero(k, k);
+    for (Eigen::Index a = 0; a < k; ++a)
+    {
+      for (Eigen::Index b = 0; b < k; ++b)
+      {
+        L(a, b) = ops.Stiffness.coeff(rows[a], rows[b]);
+        M(a, b) = ops.Mass.coeff(rows[a], rows[b]);
+      }
+    }
+    Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> dense(L, M);
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+      all.push_back(dense.eigenvalues()[j]);
+    }
+  }
+  std::sort(all.begin(), all.end());
+  return Eigen::Map<Vector>(all.data(), static_cast<Eigen::Index>(all.size()));
+}
+
+//------------------------------------------------------------------------------
+void ComponentsOneByOne()
+{
+  // 201 components: more zero eigenvalues than one band holds (a band asks for 135 pairs at
+  // m = 100); each component gets exactly one.
+  const TriangleMesh mesh = SphereWithIslands(200);
+  BasisOptions options;
+  options.NumberOfHarmonics = 260;
+  const BasisResult basis = ComputeBasis(mesh, options);
+  const Vector& lambda = basis.Pairs.Eigenvalues;
+  Check(basis.Components == 201, "201 components");
+  int zeros = 0;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    zeros += std::abs(lambda[k]) < 1e-8 ? 1 : 0;
+  }
+  Check(zeros == 201, "one zero eigenvalue per component: " + std::to_string(zeros));
+  const Vector reference = UnionOfComponentSpectra(mesh).head(lambda.size());
+  double worst = 0.0;
+  for (Eigen::Index k = 201; k < lambda.size(); ++k)
+  {
+    worst = std::max(worst, std::abs(lambda[k] - reference[k]) / reference[k]);
+  }
+  CheckBelow(worst, 1e-8, "non-zero eigenvalues equal the union of dense component spectra");
+  const DiscreteLaplacian ops = AssembleLaplacian(PrepareMesh(mesh), LaplacianOptions());
+  CheckBelow(OrthonormalityError(basis.Pairs.Eigenvectors, ops.Mass), 1e-10, "M-orthonormal");
+  const Vector residuals =
+    RelativeResiduals(ops.Stiffness, ops.Mass, lambda, basis.Pairs.Eigenvectors);
+  CheckBelow(residuals.maxCoeff(), 1e-8, "every pair is an eigenpair of the whole operators");
+
+  // The same mesh without its debris: the islands' points get no rows.
+  options.MinimumComponentSize = 100;
+  std::vector<std::string> seen;
+  Monitor monitor;
+  monitor.Warning = [&seen](const std::string& text) { seen.push_back(text); };
+  const BasisResult cleaned = ComputeBasis(mesh, options, monitor);
+  Check(cleaned.Components == 1 && cleaned.InputPointIds.size() == 642,
+    "MinimumComponentSize 100 keeps the sphere only");
+  Check(!seen.empty() && seen.front().find("Left out 200 connected components") == 0,
+    "the debris left out is named: " + (seen.empty() ? std::string() : seen.front()));
+  const BasisResult sphere = ComputeBasis(Icosphere(3), options);
+  CheckBelow(EigenvalueDifference(cleaned.Pairs.Eigenvalues, sphere.Pairs.Eigenvalues),
+    1e-12,
+    "its eigenvalues are the sphere's alone");
+}
+
+//------------------------------------------------------------------------------
+void FewerHarmonicsThanComponents()
+{
+  std::vector<std::string> seen;
+  Monitor monitor;
+  monitor.Warning = [&seen](const std::string& text) { seen.push_back(text); };
+  bool warnedBeforeSolve = false;
+  bool solving = false;
+  monitor.Stage = [&](const char* stage)
+  {
+    solving = std::string(stage) == "Eigensolve";
+    if (solving)
+    {
+      for (const std::string& text : seen)
+      {
+        warnedBeforeSolve |=
+          text.find("does not exceed the 11 connected components") != std::string::npos;
+      }
+    }
+  };
+  BasisOptions options;
+  options.NumberOfHarmonics = 10;
+  const BasisResult basis = ComputeBasis(SphereWithIslands(10), options, monitor);
+  Check(warnedBeforeSolve, "10 harmonics for 11 components: said before the solve");
+  CheckBelow(basis.Pairs.Eigenvalues.cwiseAbs().maxCoeff(), 1e-8, "all ten eigenvalues are 0");
+}
+
+//------------------------------------------------------------------------------
+void ScaleInvariance()
+{
+  // lambda s^2 and the M-normalized harmonics times s do not depend on the unit.
+  const TriangleMesh unit = NoisyTorus(40, 16, 0.2);
+  BasisOptions options;
+  options.NumberOfHarmonics = 30;
+  options.Solver.DenseThreshold = 0;
+  const BasisResult reference = ComputeBasis(unit, options);
+  for (double scale : { 1e-20, 1e-7, 3.7e-3, 5e5, 8e6, 1e9, 1e20 })
+  {
+    TriangleMesh mesh = unit;
+    mesh.Vertices *= scale;
+    const BasisResult basis = ComputeBasis(mesh, options);
+    const Vector lambda = basis.Pairs.Eigenvalues * (scale * scale);
+    const double top = reference.Pairs.Eigenvalues.maxCoeff();
+    char name[64];
+    std::snprintf(name, sizeof(name), "scale %g: ", scale);
+    CheckBelow((lambda - reference.Pairs.Eigenvalues).cwiseAbs().maxCoeff() / top,
+      1e-12,
+      std::string(name) + "lambda s^2 equal");
+    CheckBelow(
+      (basis.Pairs.Eigenvectors * scale - reference.Pairs.Eigenvectors).cwiseAbs().maxCoeff() /
+        reference.Pairs.Eigenvectors.cwiseAbs().maxCoeff(),
+      1e-9,
+      std::string(name) + "harmonics times s equal");
+    CheckBelow(std::abs(basis.LumpedMass.sum() / (scale * scale) - reference.LumpedMass.sum()) /
+        reference.LumpedMass.sum(),
+      1e-13,
+      std::string(name) + "mass / s^2 equal");
+  }
+}
+
+//------------------------------------------------------------------------------
+void DuplicateTriangles()
+{
+  // Every fifth triangle repeated, alternately in the other orientation: left out, counted.
+  const TriangleMesh sphere = Icosphere(2);
+  TriangleMesh doubled = sphere;
+  const Eigen::Index f = sphere.Faces.rows();
+  doubled.Faces.conservativeResize(f + f / 5, 3);
+  for (Eigen::Index t = 0; t < f / 5; ++t)
+  {
+    const Eigen::Index src = 5 * t;
+    doubled.Faces.row(f + t) = (t % 2)
+      ? sphere.Faces.row(src)
+      : Eigen::RowVector3i(sphere.Faces(src, 0), sphere.Faces(src, 2), sphere.Faces(src, 1));
+  }
+  std::vector<std::string> seen;
+  Monitor monitor;
+  monitor.Warning = [&seen](const std::string& text) { seen.push_back(text); };
+  BasisOptions options;
+  options.NumberOfHarmonics = 20;
+  const BasisResult basis = ComputeBasis(doubled, options, monitor);
+  const BasisResult clean = ComputeBasis(sphere, options);
+  Check(!seen.empty() &&
+      seen.front() ==
+        "Left out " + std::to_string(f / 5) +
+          " duplicated triangles (the same three points as another triangle, in either "
+          "orientation).",
+    "the duplicates are counted: " + (seen.empty() ? std::string() : seen.front()));
+  CheckBelow(EigenvalueDifference(basis.Pairs.Eigenvalues, clean.Pairs.Eigenvalues),
+    1e-13,
+    "the spectrum is the sphere's");
+  CheckBelow(
+    (basis.LumpedMass - clean.LumpedMass).cwiseAbs().maxCoeff(), 1e-15, "the mass is the sphere's");
+}
+
 const Case Cases[] = {
   { "SameAsParts", SameAsParts },
   { "WarningsAndClamping", WarningsAndClamping },
@@ -218,6 +438,10 @@ const Case Cases[] = {
   { "MemoryCheck", MemoryCheck },
   { "BadInput", BadInput },
   { "ProgressAndCancellation", ProgressAndCancellation },
+  { "ComponentsOneByOne", ComponentsOneByOne },
+  { "FewerHarmonicsThanComponents", FewerHarmonicsThanComponents },
+  { "ScaleInvariance", ScaleInvariance },
+  { "DuplicateTriangles", DuplicateTriangles },
 };
 } // namespace
 

@@ -358,7 +358,8 @@ SparseMatrix IntrinsicCotanStiffness(const IntrinsicTriangulation& T)
     for (int c = 0; c < 3; ++c)
     {
       // Side c = (i, j) is opposite corner c+2.
-      assembly.AddEdgeWeight(T.Faces(f, c), T.Faces(f, (c + 1) % 3),
+      assembly.AddEdgeWeight(T.Faces(f, c),
+        T.Faces(f, (c + 1) % 3),
         0.5 * Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3)));
     }
   }
@@ -386,7 +387,9 @@ SparseMatrix IntrinsicConsistentMass(const IntrinsicTriangulation& T)
   TriangleAssembly assembly(T.NumberOfPoints, T.Faces.rows(), 9);
   for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
   {
-    assembly.AddMassBlock(T.Faces(f, 0), T.Faces(f, 1), T.Faces(f, 2),
+    assembly.AddMassBlock(T.Faces(f, 0),
+      T.Faces(f, 1),
+      T.Faces(f, 2),
       HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)));
   }
   return assembly.Matrix();

@@ -11,17 +11,6 @@ namespace spectral
 namespace
 {
 //------------------------------------------------------------------------------
-// Bounding-box diagonal of the points.
-double Diagonal(const Points& points)
-{
-  if (points.rows() == 0)
-  {
-    return 0.0;
-  }
-  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-}
-
-//------------------------------------------------------------------------------
 // The intrinsic Delaunay operators, with a warning about the edges that could not be flipped.
 void AssembleIntrinsic(const TriangleMesh& mesh,
   bool consistent,
@@ -69,8 +58,8 @@ DiscreteLaplacian AssembleLaplacian(const PreparedMesh& prepared,
     out.Mass = consistent ? ConsistentMass(mesh) : spectral::Diagonal(out.LumpedMass);
   }
   out.InputPointIds = prepared.InputPointIds;
-  out.Components = ConnectedComponents(mesh);
-  out.Diameter = Diagonal(mesh.Vertices);
+  out.Components = LabelComponents(mesh);
+  out.Diameter = BoundingBoxDiagonal(mesh.Vertices);
   return out;
 }
 
@@ -83,11 +72,23 @@ std::vector<std::string> PreparationWarnings(const PreparedMesh& prepared)
     warnings.push_back("Left out " + std::to_string(prepared.DegenerateTriangles) +
       " degenerate (zero-area) triangles.");
   }
+  if (prepared.DuplicateTriangles > 0)
+  {
+    warnings.push_back("Left out " + std::to_string(prepared.DuplicateTriangles) +
+      " duplicated triangles (the same three points as another triangle, in either "
+      "orientation).");
+  }
   if (prepared.UnusedPoints > 0)
   {
     warnings.push_back(std::to_string(prepared.UnusedPoints) +
       (prepared.UnusedPoints == 1 ? " point is used by no triangle; its harmonics are 0."
                                   : " points are used by no triangle; their harmonics are 0."));
+  }
+  if (prepared.SmallComponents > 0)
+  {
+    warnings.push_back("Left out " + std::to_string(prepared.SmallComponents) +
+      " connected components smaller than MinimumComponentSize (" +
+      std::to_string(prepared.SmallComponentPoints) + " points): their harmonics and mass are 0.");
   }
   return warnings;
 }

@@ -60,8 +60,8 @@ struct DiscreteLaplacian
   Vector LumpedMass;
   /// For each row of the operators, the input point it belongs to.
   std::vector<int> InputPointIds;
-  /// Number of connected components of the used points (one zero eigenvalue each).
-  int Components = 0;
+  /// The connected component of each row (one zero eigenvalue each).
+  ComponentLabels Components;
   /// Bounding-box diagonal of the used points: the scale of the lowest frequencies.
   double Diameter = 0.0;
   /// What was left out or could not be repaired, one sentence each, for the user.
@@ -80,8 +80,8 @@ DiscreteLaplacian AssembleLaplacian(const PreparedMesh& prepared,
   const Monitor& monitor = Monitor());
 
 /**
- * Sentences for the user about what PrepareMesh left out (degenerate triangles, points no
- * triangle uses); empty when nothing was.
+ * Sentences for the user about what PrepareMesh (degenerate and duplicated triangles, points
+ * no triangle uses) and LeaveOutSmallComponents left out; empty when nothing was.
  */
 std::vector<std::string> PreparationWarnings(const PreparedMesh& prepared);
 } // namespace spectral

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -42,6 +43,41 @@ bool IsDegenerate(const TriangleMesh& mesh, int f)
 /// Largest coordinate magnitude PrepareMesh accepts: squared areas (edge lengths to the fourth
 /// power) stay finite below it.
 constexpr double MaxCoordinate = 1e75;
+
+/**
+ * Keeps the first of triangles with the same three corners (either orientation): `corners`
+ * holds the sorted corners of each triangle of `kept`, in the same order; both are reduced to
+ * the triangles kept, in their input order, and `duplicates` counts the others.
+ */
+void LeaveOutDuplicates(std::vector<std::array<int, 3>>& corners,
+  std::vector<int>& kept,
+  int& duplicates)
+{
+  std::vector<std::size_t> order(kept.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&corners](std::size_t a, std::size_t b) { return corners[a] < corners[b]; });
+  std::vector<char> keep(kept.size(), 1);
+  for (std::size_t i = 1; i < order.size(); ++i)
+  {
+    if (corners[order[i]] == corners[order[i - 1]])
+    {
+      keep[order[i]] = 0; // stable: the earlier input triangle stays
+      ++duplicates;
+    }
+  }
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+  {
+    if (keep[i])
+    {
+      kept[next++] = kept[i];
+    }
+  }
+  kept.resize(next);
+  corners.clear();
+}
 
 /// Union-find root with path halving.
 int Root(std::vector<int>& parent, int i)
@@ -90,6 +126,8 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
   std::vector<int> compact(numPts, -1);
   std::vector<int> kept;
   kept.reserve(numTris);
+  std::vector<std::array<int, 3>> seen; // sorted corners of the kept triangles
+  seen.reserve(numTris);
   for (int f = 0; f < numTris; ++f)
   {
     if (IsDegenerate(input, f))
@@ -97,7 +135,14 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
       ++out.DegenerateTriangles;
       continue;
     }
+    std::array<int, 3> corners = { input.Faces(f, 0), input.Faces(f, 1), input.Faces(f, 2) };
+    std::sort(corners.begin(), corners.end());
+    seen.push_back(corners);
     kept.push_back(f);
+  }
+  LeaveOutDuplicates(seen, kept, out.DuplicateTriangles);
+  for (int f : kept)
+  {
     for (int c = 0; c < 3; ++c)
     {
       compact[input.Faces(f, c)] = 0;
@@ -247,7 +292,17 @@ double SurfaceArea(const TriangleMesh& mesh)
 }
 
 //------------------------------------------------------------------------------
-int ConnectedComponents(const TriangleMesh& mesh)
+double BoundingBoxDiagonal(const Points& points)
+{
+  if (points.rows() == 0)
+  {
+    return 0.0;
+  }
+  return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+//------------------------------------------------------------------------------
+ComponentLabels LabelComponents(const TriangleMesh& mesh)
 {
   const int n = static_cast<int>(mesh.Vertices.rows());
   std::vector<int> parent(n);
@@ -258,12 +313,85 @@ int ConnectedComponents(const TriangleMesh& mesh)
     parent[Root(parent, mesh.Faces(f, 1))] = r0;
     parent[Root(parent, mesh.Faces(f, 2))] = r0;
   }
-  int count = 0;
+  ComponentLabels out;
+  out.Label.assign(static_cast<std::size_t>(n), -1);
+  std::vector<int> labelOfRoot(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i)
   {
-    count += (Root(parent, i) == i) ? 1 : 0;
+    int& label = labelOfRoot[static_cast<std::size_t>(Root(parent, i))];
+    if (label < 0)
+    {
+      label = out.Count++;
+    }
+    out.Label[static_cast<std::size_t>(i)] = label;
   }
-  return count;
+  return out;
+}
+
+//------------------------------------------------------------------------------
+PreparedMesh LeaveOutSmallComponents(const PreparedMesh& prepared, int minimumPoints)
+{
+  const ComponentLabels components = LabelComponents(prepared.Mesh);
+  std::vector<int> size(static_cast<std::size_t>(components.Count), 0);
+  for (int label : components.Label)
+  {
+    ++size[static_cast<std::size_t>(label)];
+  }
+  PreparedMesh out = prepared;
+  for (int points : size)
+  {
+    out.SmallComponents += points < minimumPoints ? 1 : 0;
+  }
+  if (out.SmallComponents == 0)
+  {
+    return out;
+  }
+  // The points of the components kept, renumbered in their order.
+  const Eigen::Index n = prepared.Mesh.Vertices.rows();
+  std::vector<int> compact(static_cast<std::size_t>(n), -1);
+  out.InputPointIds.clear();
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    if (size[static_cast<std::size_t>(components.Label[static_cast<std::size_t>(i)])] >=
+      minimumPoints)
+    {
+      compact[static_cast<std::size_t>(i)] = static_cast<int>(out.InputPointIds.size());
+      out.InputPointIds.push_back(prepared.InputPointIds[static_cast<std::size_t>(i)]);
+    }
+  }
+  out.SmallComponentPoints = static_cast<int>(n) - static_cast<int>(out.InputPointIds.size());
+  out.Mesh.Vertices.resize(static_cast<Eigen::Index>(out.InputPointIds.size()), 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    if (compact[static_cast<std::size_t>(i)] >= 0)
+    {
+      out.Mesh.Vertices.row(compact[static_cast<std::size_t>(i)]) = prepared.Mesh.Vertices.row(i);
+    }
+  }
+  std::vector<int> faces;
+  for (Eigen::Index f = 0; f < prepared.Mesh.Faces.rows(); ++f)
+  {
+    if (compact[static_cast<std::size_t>(prepared.Mesh.Faces(f, 0))] >= 0)
+    {
+      faces.push_back(static_cast<int>(f));
+    }
+  }
+  out.Mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t t = 0; t < faces.size(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Mesh.Faces(static_cast<Eigen::Index>(t), c) =
+        compact[static_cast<std::size_t>(prepared.Mesh.Faces(faces[t], c))];
+    }
+  }
+  return out;
+}
+
+//------------------------------------------------------------------------------
+int ConnectedComponents(const TriangleMesh& mesh)
+{
+  return LabelComponents(mesh).Count;
 }
 
 //------------------------------------------------------------------------------

@@ -28,12 +28,19 @@ struct PreparedMesh
   std::vector<int> InputPointIds;
   /// Input triangles left out because their area is numerically zero.
   int DegenerateTriangles = 0;
+  /// Input triangles left out because an earlier one has the same three points (either
+  /// orientation): counted twice they would double the local stiffness and mass.
+  int DuplicateTriangles = 0;
   /// Input points that no remaining triangle uses (their harmonics are zero).
   int UnusedPoints = 0;
+  /// Connected components left out by LeaveOutSmallComponents, and their points (which have
+  /// zero harmonics, as unused points have).
+  int SmallComponents = 0;
+  int SmallComponentPoints = 0;
 };
 
 /**
- * Keep the triangles with non-zero area and the points they use.
+ * Keep the triangles with non-zero area, once each, and the points they use.
  *
  * A triangle is degenerate when twice its area is below 1e-12 times its longest edge squared
  * (zero-area triangles, repeated points, collinear corners). Degenerate triangles carry no
@@ -45,6 +52,15 @@ struct PreparedMesh
  *         above 1e75 (where squared areas overflow) on a used point.
  */
 PreparedMesh PrepareMesh(const TriangleMesh& input);
+
+/**
+ * Leave out the connected components of fewer than `minimumPoints` points: their triangles are
+ * dropped and their points get zero harmonics and mass, like unused points (SmallComponents and
+ * SmallComponentPoints count them).
+ * \param prepared The output of PrepareMesh.
+ * \param minimumPoints Components of at least this many points stay; 0 or 1 keeps all.
+ */
+PreparedMesh LeaveOutSmallComponents(const PreparedMesh& prepared, int minimumPoints);
 
 /**
  * Cotangent stiffness matrix Q (#V by #V, sparse, symmetric, positive semi-definite).
@@ -92,8 +108,23 @@ private:
 /// The diagonal matrix diag(d) in sparse form.
 SparseMatrix Diagonal(const Vector& d);
 
+/// The diagonal of the bounding box of the points; 0 for none.
+double BoundingBoxDiagonal(const Points& points);
+
 /// Total area of the triangles.
 double SurfaceArea(const TriangleMesh& mesh);
+
+/// The connected component of each point (points joined by triangle edges).
+struct ComponentLabels
+{
+  /// For each point, its component in [0, Count), numbered in the order of their first points.
+  std::vector<int> Label;
+  /// Number of components; isolated points count as components of their own.
+  int Count = 0;
+};
+
+/// Label the connected components of a mesh.
+ComponentLabels LabelComponents(const TriangleMesh& mesh);
 
 /// Number of connected components (points joined by triangle edges; isolated points count too).
 int ConnectedComponents(const TriangleMesh& mesh);

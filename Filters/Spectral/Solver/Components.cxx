@@ -1,0 +1,196 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Solver/Components.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace spectral
+{
+namespace
+{
+/// One component: its rows of the whole operators, its own operators and its pairs.
+struct Block
+{
+  std::vector<int> Rows;
+  SparseMatrix L;
+  SparseMatrix M;
+  double Area = 0.0;
+  /// Pairs asked for in the last solve.
+  int Asked = 0;
+  EigenResult Pairs;
+};
+
+//------------------------------------------------------------------------------
+// The operators of each component, with its rows in the whole ones.
+std::vector<Block> SplitBlocks(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& weight,
+  const std::vector<int>& label,
+  int count)
+{
+  std::vector<Block> blocks(static_cast<std::size_t>(count));
+  std::vector<int> local(label.size());
+  for (std::size_t i = 0; i < label.size(); ++i)
+  {
+    Block& block = blocks[static_cast<std::size_t>(label[i])];
+    local[i] = static_cast<int>(block.Rows.size());
+    block.Rows.push_back(static_cast<int>(i));
+    block.Area += weight[static_cast<Eigen::Index>(i)];
+  }
+  // Entries of each whole matrix, sorted into the blocks of their columns (the operators have
+  // no entry between components).
+  const auto split = [&blocks, &label, &local](const SparseMatrix& A, SparseMatrix Block::*part)
+  {
+    std::vector<std::vector<Eigen::Triplet<double>>> entries(blocks.size());
+    for (int j = 0; j < A.outerSize(); ++j)
+    {
+      auto& list = entries[static_cast<std::size_t>(label[static_cast<std::size_t>(j)])];
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      {
+        list.emplace_back(local[static_cast<std::size_t>(it.row())],
+          local[static_cast<std::size_t>(j)],
+          it.value());
+      }
+    }
+    for (std::size_t c = 0; c < blocks.size(); ++c)
+    {
+      const Eigen::Index size = static_cast<Eigen::Index>(blocks[c].Rows.size());
+      SparseMatrix& matrix = blocks[c].*part;
+      matrix.resize(size, size);
+      matrix.setFromTriplets(entries[c].begin(), entries[c].end());
+    }
+  };
+  split(L, &Block::L);
+  split(M, &Block::M);
+  return blocks;
+}
+
+//------------------------------------------------------------------------------
+// The pairs a component is first asked for: its share of m by area, with a margin, at most m
+// and at most its size.
+int FirstRequest(const Block& block, double totalArea, int m)
+{
+  const double share = totalArea > 0.0 ? m * block.Area / totalArea : m;
+  const double asked = std::ceil(1.25 * share) + 10.0;
+  const int size = static_cast<int>(block.Rows.size());
+  return static_cast<int>(std::min<double>({ asked, static_cast<double>(m), size * 1.0 }));
+}
+
+//------------------------------------------------------------------------------
+// The statistics of `part` added to those of `total`.
+void AddStatistics(EigenResult& total, const EigenResult& part)
+{
+  total.MaxResidual = std::max(total.MaxResidual, part.MaxResidual);
+  total.Bands += part.Bands;
+  total.Factorizations += part.Factorizations;
+  total.OperatorApplications += part.OperatorApplications;
+  total.Seconds.Factorization += part.Seconds.Factorization;
+  total.Seconds.Solve += part.Seconds.Solve;
+  total.Seconds.Orthogonalization += part.Seconds.Orthogonalization;
+  total.Seconds.RayleighRitz += part.Seconds.RayleighRitz;
+  total.Seconds.Verification += part.Seconds.Verification;
+}
+
+/// A pair of the union: eigenvalue, component, index within the component's pairs.
+using Member = std::tuple<double, int, int>;
+
+//------------------------------------------------------------------------------
+// The m smallest pairs of the union, ascending; ties in component order.
+std::vector<Member> Smallest(const std::vector<Block>& blocks, int m)
+{
+  std::vector<Member> all;
+  for (std::size_t c = 0; c < blocks.size(); ++c)
+  {
+    const Vector& lambda = blocks[c].Pairs.Eigenvalues;
+    for (Eigen::Index k = 0; k < lambda.size(); ++k)
+    {
+      all.emplace_back(lambda[k], static_cast<int>(c), static_cast<int>(k));
+    }
+  }
+  std::sort(all.begin(), all.end());
+  all.resize(std::min<std::size_t>(all.size(), static_cast<std::size_t>(m)));
+  return all;
+}
+
+//------------------------------------------------------------------------------
+// Whether a component may hide eigenvalues below `threshold`: it has more pairs than it was
+// asked for and its largest computed eigenvalue lies below the threshold.
+bool MayHideEigenvalues(const Block& block, double threshold)
+{
+  const Vector& lambda = block.Pairs.Eigenvalues;
+  return block.Asked < static_cast<int>(block.Rows.size()) &&
+    (lambda.size() == 0 || lambda[lambda.size() - 1] < threshold);
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& weight,
+  const std::vector<int>& label,
+  int count,
+  int m,
+  const PairSolver& solve,
+  const Monitor& monitor)
+{
+  if (count <= 1)
+  {
+    return solve(L, M, m, monitor);
+  }
+  std::vector<Block> blocks = SplitBlocks(L, M, weight, label, count);
+  const double totalArea = weight.sum();
+  const double n = static_cast<double>(L.rows());
+  EigenResult result;
+  double done = 0.0;
+  for (Block& block : blocks)
+  {
+    const double share = static_cast<double>(block.Rows.size()) / n;
+    block.Asked = FirstRequest(block, totalArea, m);
+    block.Pairs = solve(block.L, block.M, block.Asked, monitor.Scaled(done, done + share));
+    AddStatistics(result, block.Pairs);
+    done += share;
+  }
+  // Components that may hide eigenvalues below the m-th smallest of the union are solved
+  // again with more pairs; each pass at least doubles a request, so this ends.
+  Monitor quiet;
+  quiet.Cancelled = monitor.Cancelled;
+  for (bool again = true; again;)
+  {
+    again = false;
+    const std::vector<Member> smallest = Smallest(blocks, m);
+    const double threshold = smallest.size() < static_cast<std::size_t>(m)
+      ? std::numeric_limits<double>::infinity()
+      : std::get<0>(smallest.back());
+    for (Block& block : blocks)
+    {
+      if (MayHideEigenvalues(block, threshold))
+      {
+        block.Asked = std::min(static_cast<int>(block.Rows.size()), std::max(2 * block.Asked, 1));
+        block.Pairs = solve(block.L, block.M, block.Asked, quiet);
+        AddStatistics(result, block.Pairs);
+        again = true;
+      }
+    }
+  }
+
+  const std::vector<Member> smallest = Smallest(blocks, m);
+  result.Eigenvalues.resize(static_cast<Eigen::Index>(smallest.size()));
+  result.Eigenvectors = DenseMatrix::Zero(L.rows(), result.Eigenvalues.size());
+  for (std::size_t j = 0; j < smallest.size(); ++j)
+  {
+    const auto& [lambda, c, k] = smallest[j];
+    const Block& block = blocks[static_cast<std::size_t>(c)];
+    result.Eigenvalues[static_cast<Eigen::Index>(j)] = lambda;
+    for (std::size_t r = 0; r < block.Rows.size(); ++r)
+    {
+      result.Eigenvectors(block.Rows[r], static_cast<Eigen::Index>(j)) =
+        block.Pairs.Eigenvectors(static_cast<Eigen::Index>(r), k);
+    }
+  }
+  monitor.Report(1.0);
+  return result;
+}
+} // namespace spectral

@@ -1,0 +1,63 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Components.h
+ * @brief The smallest eigenpairs of a disconnected mesh, one component at a time.
+ *
+ * The operators of a mesh with several connected components are block diagonal, and their
+ * eigenpairs are the union of the components' eigenpairs (each extended by zero). Solving each
+ * component on its own gives exactly one zero eigenvalue per component, however many there are
+ * (a single solve would need a band holding all of them, and scans carry hundreds of islands),
+ * keeps the residual test of each component on its own scale, and solves tiny components
+ * densely (SmallestEigenpairs does for any problem of at most EigenOptions::DenseThreshold
+ * unknowns).
+ *
+ * How many pairs each component needs is not known in advance: component c is first asked for
+ * k_c = its share of m by area (Weyl's law: the number of eigenvalues below lambda grows as
+ * area lambda / 4 pi) with a margin. The m smallest of the union are then taken; a component
+ * whose largest computed eigenvalue lies below the m-th smallest of the union, and which has
+ * more eigenpairs than it was asked for, may hide eigenvalues below it: it is solved again with
+ * twice as many pairs, until none is. Each component's solve proves (by inertia) that no
+ * eigenvalue below its largest computed one is missing, so the union is proven too.
+ *
+ * Used by Basis.cxx; tested by Testing/Core/TestBasis.cxx (Components*).
+ */
+#ifndef spectral_Components_h
+#define spectral_Components_h
+
+#include "Common/Mesh.h"
+#include "Common/Monitor.h"
+#include "Solver/EigenSolver.h"
+
+#include <functional>
+#include <vector>
+
+namespace spectral
+{
+/// Solves L h = lambda M h for the k smallest pairs (with whatever fallbacks the caller wants).
+using PairSolver = std::function<
+  EigenResult(const SparseMatrix& L, const SparseMatrix& M, int k, const Monitor& monitor)>;
+
+/**
+ * The m smallest eigenpairs of block-diagonal operators, component by component.
+ * \param L, M The operators (n by n) of a mesh whose points are labelled by component.
+ * \param weight The lumped mass of each point (the area share of each component).
+ * \param label For each point, its component in [0, count).
+ * \param count Number of components, >= 1.
+ * \param m Number of pairs, 1 <= m <= n.
+ * \param solve The solver of one component.
+ * \param monitor Progress in [0, 1] over all components, and cancellation.
+ * \return Eigenvalues ascending (ties in component order), eigenvectors n by m, each zero
+ *         outside its component; the statistics summed (MaxResidual: the largest).
+ */
+EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& weight,
+  const std::vector<int>& label,
+  int count,
+  int m,
+  const PairSolver& solve,
+  const Monitor& monitor = Monitor());
+} // namespace spectral
+
+#endif
