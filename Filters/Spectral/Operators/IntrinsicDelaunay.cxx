@@ -74,8 +74,11 @@ public:
   {
   }
 
-  /// Orient the faces consistently where possible and glue manifold edges.
-  void Connect();
+  /**
+   * Glue the sides of a tufted cover: faces [0, F) are the input triangles, faces [F, 2F) the
+   * same triangles reversed (face F + f is (a, c, b) for face f = (a, b, c)).
+   */
+  void ConnectTufted();
   /// Flip until Delaunay or out of budget.
   void Run(const Monitor& monitor);
 
@@ -93,10 +96,10 @@ private:
 };
 
 //------------------------------------------------------------------------------
-void Flipper::Connect()
+void Flipper::ConnectTufted()
 {
-  const int numFaces = static_cast<int>(this->T.Faces.rows());
-  // The sides of each undirected edge.
+  const int numFaces = static_cast<int>(this->T.Faces.rows()) / 2;
+  // The input triangles around each undirected edge, with the side that runs along it.
   std::map<std::pair<int, int>, std::vector<Side>> edges;
   for (int f = 0; f < numFaces; ++f)
   {
@@ -107,85 +110,30 @@ void Flipper::Connect()
       edges[{ std::min(i, j), std::max(i, j) }].push_back({ f, c });
     }
   }
-
-  // Orient faces by breadth-first traversal across manifold edges: a neighbour is reversed when
-  // it runs along the shared edge in the same direction.
-  std::vector<int> state(numFaces, 0); // 0 unvisited, 1 kept, 2 reversed
-  std::vector<int> queue;
-  for (int seed = 0; seed < numFaces; ++seed)
-  {
-    if (state[seed] != 0)
-    {
-      continue;
-    }
-    state[seed] = 1;
-    queue.assign(1, seed);
-    for (std::size_t q = 0; q < queue.size(); ++q)
-    {
-      const int f = queue[q];
-      for (int c = 0; c < 3; ++c)
-      {
-        const int i = this->Vertex(f, c);
-        const int j = this->Vertex(f, c + 1);
-        const auto& sides = edges[{ std::min(i, j), std::max(i, j) }];
-        if (sides.size() != 2)
-        {
-          continue;
-        }
-        const Side other = sides[0].Face == f && sides[0].Index == c ? sides[1] : sides[0];
-        if (state[other.Face] != 0)
-        {
-          continue;
-        }
-        const bool sameDirection = this->Vertex(other.Face, other.Index) == i;
-        state[other.Face] = sameDirection ? 2 : 1;
-        if (sameDirection)
-        {
-          // Reverse in place: (a, b, c) -> (a, c, b); sides (ab, bc, ca) -> (ac, cb, ba).
-          std::swap(this->T.Faces(other.Face, 1), this->T.Faces(other.Face, 2));
-          const double ab = this->T.Lengths(other.Face, 0);
-          const double ca = this->T.Lengths(other.Face, 2);
-          this->T.Lengths(other.Face, 0) = ca;
-          this->T.Lengths(other.Face, 2) = ab;
-          // The side indices recorded in `edges` for this face changed: fix them.
-          for (int d = 0; d < 3; ++d)
-          {
-            const int a = this->Vertex(other.Face, d);
-            const int b = this->Vertex(other.Face, d + 1);
-            for (Side& s : edges[{ std::min(a, b), std::max(a, b) }])
-            {
-              if (s.Face == other.Face)
-              {
-                s.Index = d;
-              }
-            }
-          }
-        }
-        queue.push_back(other.Face);
-      }
-    }
-  }
-
-  // Glue the manifold edges whose two sides now run in opposite directions.
+  // Around an edge i < j, each triangle has one copy whose side runs i -> j (Up) and one whose
+  // side runs j -> i (Down); side c of face f is side 2 - c of its reverse F + f. Gluing the Up
+  // side of each triangle to the Down side of the next, cyclically, pairs every side with one
+  // running the other way: the cover is an oriented closed surface, whatever the input's
+  // orientation, boundary or non-manifold edges (one triangle: its two copies are glued).
   for (const auto& edge : edges)
   {
-    const auto& sides = edge.second;
-    if (sides.size() > 2)
+    const std::vector<Side>& sides = edge.second;
+    const std::size_t k = sides.size();
+    std::vector<Side> up(k);
+    std::vector<Side> down(k);
+    for (std::size_t a = 0; a < k; ++a)
     {
-      ++this->T.UnflippableEdges;
-      continue;
+      const Side front = sides[a];
+      const Side back{ front.Face + numFaces, 2 - front.Index };
+      const bool forward = this->Vertex(front.Face, front.Index) == edge.first.first;
+      up[a] = forward ? front : back;
+      down[a] = forward ? back : front;
     }
-    if (sides.size() != 2 || sides[0].Face == sides[1].Face)
+    for (std::size_t a = 0; a < k; ++a)
     {
-      continue;
+      this->Neighbor(up[a]) = down[(a + 1) % k];
+      this->Neighbor(down[(a + 1) % k]) = up[a];
     }
-    if (this->Vertex(sides[0].Face, sides[0].Index) == this->Vertex(sides[1].Face, sides[1].Index))
-    {
-      ++this->T.UnflippableEdges; // non-orientable: a Moebius-like seam
-      continue;
-    }
-    this->Neighbor(sides[0]) = sides[1];
-    this->Neighbor(sides[1]) = sides[0];
   }
 }
 
@@ -339,11 +287,54 @@ IntrinsicTriangulation IntrinsicTriangulationOf(const TriangleMesh& mesh)
 }
 
 //------------------------------------------------------------------------------
+double Mollify(EdgeLengths& lengths, double factor)
+{
+  if (lengths.rows() == 0)
+  {
+    return 0.0;
+  }
+  const double epsilon = factor * lengths.mean();
+  double delta = 0.0;
+  for (Eigen::Index f = 0; f < lengths.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double margin = lengths(f, (c + 1) % 3) + lengths(f, (c + 2) % 3) - lengths(f, c);
+      delta = std::max(delta, epsilon - margin);
+    }
+  }
+  lengths.array() += delta;
+  return delta;
+}
+
+//------------------------------------------------------------------------------
+IntrinsicTriangulation TuftedCover(const TriangleMesh& mesh)
+{
+  const IntrinsicTriangulation input = IntrinsicTriangulationOf(mesh);
+  const Eigen::Index F = input.Faces.rows();
+  IntrinsicTriangulation T;
+  T.NumberOfPoints = input.NumberOfPoints;
+  T.Weight = 0.5;
+  T.Faces.resize(2 * F, 3);
+  T.Lengths.resize(2 * F, 3);
+  T.Faces.topRows(F) = input.Faces;
+  T.Lengths.topRows(F) = input.Lengths;
+  for (Eigen::Index f = 0; f < F; ++f)
+  {
+    // (a, b, c) with sides (ab, bc, ca) reversed: (a, c, b) with sides (ac, cb, ba).
+    T.Faces.row(F + f) << input.Faces(f, 0), input.Faces(f, 2), input.Faces(f, 1);
+    T.Lengths.row(F + f) << input.Lengths(f, 2), input.Lengths(f, 1), input.Lengths(f, 0);
+  }
+  return T;
+}
+
+//------------------------------------------------------------------------------
 IntrinsicTriangulation IntrinsicDelaunay(const TriangleMesh& mesh, const Monitor& monitor)
 {
-  IntrinsicTriangulation T = IntrinsicTriangulationOf(mesh);
+  IntrinsicTriangulation T = TuftedCover(mesh);
+  T.Mollification = Mollify(T.Lengths, MollificationFactor);
   Flipper flipper(T);
-  flipper.Connect();
+  flipper.ConnectTufted();
   monitor.ThrowIfCancelled();
   flipper.Run(monitor);
   return T;
@@ -360,7 +351,8 @@ SparseMatrix IntrinsicCotanStiffness(const IntrinsicTriangulation& T)
       // Side c = (i, j) is opposite corner c+2.
       assembly.AddEdgeWeight(T.Faces(f, c),
         T.Faces(f, (c + 1) % 3),
-        0.5 * Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3)));
+        0.5 * T.Weight *
+          Cot(T.Lengths(f, c), T.Lengths(f, (c + 1) % 3), T.Lengths(f, (c + 2) % 3)));
     }
   }
   return assembly.Matrix();
@@ -372,7 +364,8 @@ Vector IntrinsicLumpedMass(const IntrinsicTriangulation& T)
   Vector d = Vector::Zero(T.NumberOfPoints);
   for (Eigen::Index f = 0; f < T.Faces.rows(); ++f)
   {
-    const double third = HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)) / 3.0;
+    const double third =
+      T.Weight * HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)) / 3.0;
     for (int c = 0; c < 3; ++c)
     {
       d[T.Faces(f, c)] += third;
@@ -390,7 +383,7 @@ SparseMatrix IntrinsicConsistentMass(const IntrinsicTriangulation& T)
     assembly.AddMassBlock(T.Faces(f, 0),
       T.Faces(f, 1),
       T.Faces(f, 2),
-      HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)));
+      T.Weight * HeronArea(T.Lengths(f, 0), T.Lengths(f, 1), T.Lengths(f, 2)));
   }
   return assembly.Matrix();
 }

@@ -18,20 +18,11 @@ void AssembleIntrinsic(const TriangleMesh& mesh,
   DiscreteLaplacian& out)
 {
   const IntrinsicTriangulation T = IntrinsicDelaunay(mesh, monitor);
-  if (T.UnflippableEdges > 0 || T.NonDelaunayEdges > 0)
+  if (T.NonDelaunayEdges > 0)
   {
-    std::string text = "Intrinsic Delaunay: ";
-    if (T.UnflippableEdges > 0)
-    {
-      text += std::to_string(T.UnflippableEdges) +
-        " non-manifold or non-orientable edges were not flipped";
-    }
-    if (T.NonDelaunayEdges > 0)
-    {
-      text += std::string(T.UnflippableEdges > 0 ? " and " : "") +
-        std::to_string(T.NonDelaunayEdges) + " edges are still not Delaunay";
-    }
-    out.Warnings.push_back(text + "; their cotangent weights may be negative.");
+    out.Warnings.push_back("Intrinsic Delaunay: " + std::to_string(T.NonDelaunayEdges) +
+      " edges are still not Delaunay after the flip budget; their cotangent weights may be "
+      "negative.");
   }
   out.Stiffness = IntrinsicCotanStiffness(T);
   out.LumpedMass = IntrinsicLumpedMass(T);

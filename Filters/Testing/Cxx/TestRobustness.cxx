@@ -367,6 +367,9 @@ struct Case
   Expect Expected;
   std::string Message;   // expected in the warning (Valid, PassThrough) or error text
   int ExpectedHarmonics; // -1: as requested
+  /// The robust (tufted, mollified) intrinsic Laplacian gives a valid basis where the cotan
+  /// one gives the Expected outcome.
+  bool IntrinsicValid = false;
 };
 
 std::vector<Case> Corpus()
@@ -467,7 +470,7 @@ std::vector<Case> Corpus()
   }
   {
     // A sliver hanging on a non-manifold fin: angle of almost pi at its apex, 3 triangles on
-    // its long edge, so intrinsic flips cannot remove it.
+    // its long edge. Only flips on the tufted cover, which reach non-manifold edges, remove it.
     auto mesh = Sphere(16);
     vtkIdType p, q, r;
     FirstEdge(mesh, p, q, r);
@@ -478,7 +481,7 @@ std::vector<Case> Corpus()
       (a[0] + b[0]) / 2 + 1e-7, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2 + 1e-7);
     AddTriangle(mesh, q, p, needle);
     cases.push_back(
-      { "sliver on a non-manifold edge", mesh, 20, Expect::Error, "badly conditioned", -1 });
+      { "sliver on a non-manifold edge", mesh, 20, Expect::Error, "badly conditioned", -1, true });
   }
   {
     // Needle-only surface: a plane whose points are squeezed along y.
@@ -686,11 +689,13 @@ bool RunCase(const Case& c, int laplacian, Outcome& out)
             << AfterLocation(out.Errors + out.Warnings) << (out.Why.empty() ? "" : " | " + out.Why)
             << "\n";
   bool ok = true;
-  switch (c.Expected)
+  const bool intrinsic = laplacian == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY;
+  switch (intrinsic && c.IntrinsicValid ? Expect::Valid : c.Expected)
   {
     case Expect::Valid:
       ok &= Check(out.Valid, label + ": no valid basis (" + out.Why + ")");
-      ok &= Check(c.Message.empty() || out.Warnings.find(c.Message) != std::string::npos,
+      ok &= Check(c.Message.empty() || c.Expected != Expect::Valid ||
+          out.Warnings.find(c.Message) != std::string::npos,
         label + ": no warning containing '" + c.Message + "'");
       break;
     case Expect::PassThrough:
