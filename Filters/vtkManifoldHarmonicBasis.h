@@ -29,7 +29,7 @@
  * - field data EigenvaluesArrayName() ("ManifoldHarmonicsEigenvalues"): vtkDoubleArray with m
  *   tuples, the eigenvalues in ascending order.
  *
- * Parameters: NumberOfHarmonics (default 100), MassMatrix (default LUMPED), Laplacian (default
+ * Parameters: NumberOfHarmonics (default DEFAULT_NUMBER_OF_HARMONICS), MassMatrix (default LUMPED), Laplacian (default
  * COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles), BasisPrecision
  * (default DOUBLE; FLOAT halves the harmonics array), the solver settings BandSize (default 0,
  * automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and MemoryLimit
@@ -92,7 +92,7 @@ class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPolyDataA
 {
 public:
   /**
-   * Construct with 100 harmonics, the lumped mass matrix, the cotangent Laplacian, a double
+   * Construct with DEFAULT_NUMBER_OF_HARMONICS harmonics, the lumped mass matrix, the cotangent Laplacian, a double
    * basis, automatic band size, tolerance 1e-11, 1000 iterations at most and the memory the
    * system reports available as the limit.
    */
@@ -118,12 +118,22 @@ public:
     CONSISTENT = 1
   };
 
+  /**
+   * The default NumberOfHarmonics, here and in vtkManifoldHarmonicSmoothing: the one home of
+   * that value (the ParaView XML is checked against it by
+   * Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in).
+   */
+  enum DefaultNumberOfHarmonics
+  {
+    DEFAULT_NUMBER_OF_HARMONICS = 100
+  };
+
   ///@{
   /**
    * Number m of harmonics (eigenpairs) to compute, lowest frequencies first: at least 1 (a
    * smaller value is refused with an error and the previous value kept), clamped at execution
    * to the number of points that triangles use (with a warning). The cost grows with m: memory
-   * n x m, time roughly n x m^2. Default is 100.
+   * n x m, time roughly n x m^2. Default is DEFAULT_NUMBER_OF_HARMONICS.
    */
   virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);
@@ -208,6 +218,7 @@ public:
    * The value type of the harmonics array. FLOAT: vtkFloatArray, half the memory of DOUBLE;
    * the eigensolver still works in double and the values are rounded once when written (relative
    * error about 6e-8), which is far below what filtering a shape needs. DOUBLE: vtkDoubleArray.
+   * The one declaration of these values: vtkManifoldHarmonicSmoothing uses them too.
    */
   enum BasisPrecisionType
   {
@@ -247,11 +258,12 @@ public:
   /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
    * lumped mass ("ManifoldHarmonicsMass") and the field data eigenvalues
-   * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names.
+   * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names,
+   * whose home is the module's private vtkManifoldHarmonicsNames.h.
    */
-  static const char* HarmonicsArrayName() { return "ManifoldHarmonics"; }
-  static const char* MassArrayName() { return "ManifoldHarmonicsMass"; }
-  static const char* EigenvaluesArrayName() { return "ManifoldHarmonicsEigenvalues"; }
+  static const char* HarmonicsArrayName();
+  static const char* MassArrayName();
+  static const char* EigenvaluesArrayName();
   ///@}
 
 protected:

@@ -8,7 +8,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
-#include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -166,7 +166,7 @@ void SendMatrices(vtkMultiProcessController* controller,
   {
     SendArray(controller, ToArray(matrix.Name, matrix.Values), remote, SumTag);
   }
-  SendArray(controller, ToArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName(), eigenvalues),
+  SendArray(controller, ToArray(vtkManifoldHarmonicsNames::Eigenvalues, eigenvalues),
     remote, SumTag);
 }
 

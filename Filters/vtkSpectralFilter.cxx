@@ -6,12 +6,10 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
-#include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -20,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Spectral/Common/Eigenvalues.h"
 #include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
@@ -32,7 +31,7 @@ vtkStandardNewMacro(vtkSpectralFilter);
 
 namespace
 {
-using vtkManifoldHarmonicsArrays::Concatenate;
+namespace Names = vtkManifoldHarmonicsNames;
 
 /// A signal to filter: its name, its coefficients and the array it was computed from.
 struct FilterJob
@@ -83,7 +82,7 @@ std::string FindJobs(vtkSpectralFilter* self,
   const vtkManifoldHarmonicsArrays::Basis& basis,
   std::vector<FilterJob>& jobs)
 {
-  const std::string suffix = vtkManifoldHarmonicTransform::CoefficientsSuffix();
+  const std::string suffix = Names::CoefficientsSuffix;
   vtkFieldData* fieldData = input->GetFieldData();
   for (int a = 0; a < fieldData->GetNumberOfArrays(); ++a)
   {
@@ -96,7 +95,7 @@ std::string FindJobs(vtkSpectralFilter* self,
       continue;
     }
     const std::string name = arrayName.substr(0, arrayName.size() - suffix.size());
-    const bool isPoints = name == vtkManifoldHarmonicTransform::PointsName();
+    const bool isPoints = name == Names::Points;
     vtkDataArray* source =
       isPoints ? input->GetPoints()->GetData() : input->GetPointData()->GetArray(name.c_str());
     if (!source)
@@ -120,11 +119,40 @@ std::string FindJobs(vtkSpectralFilter* self,
   return std::string();
 }
 
+/// The core's FilterKind of a vtkSpectralFilter::FilterKinds value: the checked conversion
+/// between the two declarations (the XML's EnumerationDomain is checked against the C++ enum by
+/// Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in).
+/// \throws spectral::InvalidInput for a value that is none of the kinds.
+spectral::FilterKind ToFilterKind(int kind)
+{
+  switch (kind)
+  {
+    case vtkSpectralFilter::LOW_PASS:
+      return spectral::FilterKind::LowPass;
+    case vtkSpectralFilter::HIGH_PASS:
+      return spectral::FilterKind::HighPass;
+    case vtkSpectralFilter::BAND_PASS:
+      return spectral::FilterKind::BandPass;
+    case vtkSpectralFilter::BAND_STOP:
+      return spectral::FilterKind::BandStop;
+    case vtkSpectralFilter::ENHANCEMENT:
+      return spectral::FilterKind::Enhancement;
+    case vtkSpectralFilter::BAND_EXAGGERATION:
+      return spectral::FilterKind::BandExaggeration;
+    case vtkSpectralFilter::HEAT_DIFFUSION:
+      return spectral::FilterKind::HeatDiffusion;
+    case vtkSpectralFilter::CUSTOM:
+      return spectral::FilterKind::Custom;
+    default:
+      throw spectral::InvalidInput("FilterKind " + std::to_string(kind) + " is none of the kinds");
+  }
+}
+
 /// The parameters of the core transfer function.
 spectral::FilterParameters Parameters(vtkSpectralFilter* self)
 {
   spectral::FilterParameters parameters;
-  parameters.Kind = static_cast<spectral::FilterKind>(self->GetFilterKind());
+  parameters.Kind = ToFilterKind(self->GetFilterKind());
   parameters.Cutoff = self->GetCutoff();
   parameters.UpperCutoff = self->GetUpperCutoff();
   parameters.Transition = self->GetTransition();
@@ -152,8 +180,8 @@ std::vector<double> EdgeSums(vtkPolyData* input)
   return sums;
 }
 
-/// The Nyquist frequency pi / (mean edge length) of the whole mesh from the EdgeSums of this
-/// process: in a distributed run the sums of all processes are added up (collective).
+/// The Nyquist frequency (spectral::NyquistFrequency) of the whole mesh from the EdgeSums of
+/// this process: in a distributed run the sums of all processes are added up (collective).
 /// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
 double NyquistFrequency(vtkMultiProcessController* controller, std::vector<double> sums)
 {
@@ -161,8 +189,7 @@ double NyquistFrequency(vtkMultiProcessController* controller, std::vector<doubl
   {
     vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
   }
-  const double h = sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
-  return h > 0.0 && std::isfinite(h) ? vtkMath::Pi() / h : 0.0;
+  return spectral::NyquistFrequency(sums[0], sums[1]);
 }
 
 /// Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
@@ -185,37 +212,12 @@ void FillSpectrum(const spectral::Vector& lambda,
   const std::vector<FilterJob>& jobs,
   vtkTable* spectrum)
 {
-  const vtkIdType m = lambda.size();
-  vtkNew<vtkIdTypeArray> index;
-  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
-  index->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> frequency;
-  frequency->SetName(vtkManifoldHarmonicTransform::FrequencyColumnName());
-  frequency->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> gain;
-  gain->SetName(vtkSpectralFilter::GainColumnName());
-  gain->SetNumberOfTuples(m);
-  for (vtkIdType k = 0; k < m; ++k)
-  {
-    index->SetValue(k, k);
-    frequency->SetValue(k, std::sqrt(std::max(lambda[k], 0.0)));
-    gain->SetValue(k, gains[k]);
-  }
-  spectrum->AddColumn(index);
-  spectrum->AddColumn(frequency);
-  spectrum->AddColumn(gain);
-  const std::string magnitude = vtkManifoldHarmonicTransform::MagnitudeSuffix();
-  const std::string filtered = vtkSpectralFilter::FilteredSuffix();
+  std::vector<vtkManifoldHarmonicsArrays::SpectrumSignal> signals;
   for (const FilterJob& job : jobs)
   {
-    const vtkManifoldHarmonicsArrays::Signal coefficients(job.Coefficients);
-    const spectral::RowMatrix before = coefficients.View().rowwise().norm();
-    const spectral::RowMatrix after = gains.cwiseAbs().cwiseProduct(before.col(0));
-    spectrum->AddColumn(
-      vtkManifoldHarmonicsArrays::NewDoubleArray(before, (job.Name + magnitude).c_str()));
-    spectrum->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
-      after, (job.Name + filtered + magnitude).c_str()));
+    signals.push_back({ job.Name, vtkManifoldHarmonicsArrays::Signal(job.Coefficients).View() });
   }
+  vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, false, &gains, signals);
 }
 
 /// The slider ranges of a filter that has not run, or ran on constant harmonics only: they keep
@@ -225,14 +227,15 @@ constexpr double InitialTimeRange[2] = { 0.0, 1.0 };
 
 /// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
 /// GetTimeRange) from the eigenvalues of the basis; [0, 2] and [0, 1] when the basis has no
-/// non-constant harmonic.
+/// non-constant harmonic. Zero eigenvalues by spectral::IsZeroEigenvalue with the scale omega_N^2.
 void SliderRanges(const spectral::Vector& lambda,
   double nyquist,
   double frequency[2],
   double time[2])
 {
-  const auto nonZero = [nyquist](double value)
-  { return vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(value, nyquist); };
+  const double scale = nyquist * nyquist;
+  const auto nonZero = [scale](double value)
+  { return !spectral::IsZeroEigenvalue(value, scale) && std::isfinite(value); };
   std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, frequency);
   std::copy(InitialTimeRange, InitialTimeRange + 2, time);
   if (lambda.size() == 0 || !nonZero(lambda[lambda.size() - 1]))
@@ -276,7 +279,7 @@ void WriteSignal(const FilterJob& job,
 {
   const bool replace = job.IsPoints || replaceInput;
   const std::string name =
-    replace ? job.Name : Concatenate(job.Name.c_str(), vtkSpectralFilter::FilteredSuffix());
+    replace ? job.Name : Names::Concatenate(job.Name.c_str(), Names::FilteredSuffix);
   const char* arrayName = job.IsPoints ? job.Source->GetName() : name.c_str();
   // Filtered normals that take the place of the active normals are normals again: unit length.
   const bool activeNormals = !job.IsPoints && replace && values.cols() == 3 &&
@@ -341,7 +344,7 @@ vtkTable* vtkSpectralFilter::GetSpectrumOutput()
 //------------------------------------------------------------------------------
 const char* vtkSpectralFilter::GainColumnName()
 {
-  return "Gain";
+  return Names::GainColumn;
 }
 
 //------------------------------------------------------------------------------
@@ -353,7 +356,7 @@ vtkSpectralFilter::~vtkSpectralFilter()
 //------------------------------------------------------------------------------
 const char* vtkSpectralFilter::FilteredSuffix()
 {
-  return "_Filtered";
+  return Names::FilteredSuffix;
 }
 
 //------------------------------------------------------------------------------
@@ -484,8 +487,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     }
     if (jobs.empty())
     {
-      vtkWarningMacro(<< "Nothing to filter: no '<Array>"
-                      << vtkManifoldHarmonicTransform::CoefficientsSuffix()
+      vtkWarningMacro(<< "Nothing to filter: no '<Array>" << Names::CoefficientsSuffix
                       << "' field data; apply ManifoldHarmonicTransform upstream.");
       return 1;
     }
@@ -501,8 +503,8 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
       // The points no triangle uses (zero mass) keep their input values.
       const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
       const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
-      const spectral::RowMatrix y =
-        basis.FilterSignal(mass, gains, coefficients.View(), x.View(), highFrequencyGain);
+      const spectral::RowMatrix y = basis.FilterSignal(
+        mass, gains, coefficients.View(), x.View(), highFrequencyGain, 0);
       WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())

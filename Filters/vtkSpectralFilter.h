@@ -78,7 +78,10 @@ public:
   ///@}
 
   /**
-   * The transfer functions; the values match the ParaView enumeration and spectral::FilterKind.
+   * The transfer functions: the one declaration of their values. The core's
+   * spectral::FilterKind is converted from them by a checked switch (vtkSpectralFilter.cxx), and
+   * the ParaView enumeration is checked against them by
+   * Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in.
    */
   enum FilterKinds
   {
@@ -216,8 +219,9 @@ public:
    * parameters): FrequencyRange = [0, omega_max], omega_max = sqrt(lambda_{m-1}) the highest
    * computed frequency (for Cutoff and UpperCutoff), and TimeRange = [0, 4 / lambda_1], where
    * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time).
-   * Eigenvalues below 1e-10 omega_N^2 (omega_N the Nyquist frequency, see the class
-   * documentation) are the zero eigenvalues of the constant harmonics. Before the first
+   * The zero eigenvalues of the constant harmonics are told from the others by
+   * spectral::IsZeroEigenvalue (Filters/Spectral/Common/Eigenvalues.h) with the scale omega_N^2
+   * (omega_N the Nyquist frequency, see the class documentation). Before the first
    * execution, and after one on a basis of constant harmonics only, [0, 2] and [0, 1]: the panel
    * takes its default values from these ranges (Cutoff at the middle, UpperCutoff at the top,
    * Time at the bottom), which keeps them at 1, 2 and 0.

@@ -16,6 +16,7 @@ set(spectral_core_sources
   Filtering/Transfer.cxx
   )
 set(spectral_core_headers
+  Common/Eigenvalues.h
   Common/Mesh.h
   Common/Monitor.h
   Common/Threads.h

@@ -148,7 +148,7 @@ bool TestFloatBasis(vtkPolyData* input)
   smoothing->Update();
   vtkNew<vtkPoints> reference;
   reference->DeepCopy(smoothing->GetOutput()->GetPoints());
-  bool ok = Check(smoothing->GetBasisPrecision() == vtkManifoldHarmonicSmoothing::DOUBLE,
+  bool ok = Check(smoothing->GetBasisPrecision() == vtkManifoldHarmonicBasis::DOUBLE,
     "BasisPrecision defaults to DOUBLE");
   smoothing->SetBasisPrecisionToFloat();
   smoothing->Update();
