@@ -129,8 +129,10 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->Update();
   if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
   {
-    // The aborted basis is incomplete: the next execution computes it afresh.
+    // The aborted basis is incomplete: the next execution computes it afresh. An aborted
+    // filter's output is empty (as VTK's executive has it).
     this->Basis->Modified();
+    output->Initialize();
     return 1;
   }
   this->Transform->Update();
@@ -138,6 +140,11 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->SetProgressText("Spectral filter");
   this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
   this->Filter->Update(); // collective: before any process returns
+  if (this->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
+  {
+    output->Initialize();
+    return 1;
+  }
   if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
   {
     vtkErrorMacro(<< "The " << this->NumberOfHarmonics
@@ -160,6 +167,10 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   }
   output->SetPoints(filtered->GetPoints());
   this->UpdateProgress(1.0);
+  if (this->GetAbortExecute())
+  {
+    output->Initialize();
+  }
   return 1;
 }
 

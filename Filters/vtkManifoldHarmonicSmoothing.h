@@ -33,7 +33,8 @@
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
- * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it.
+ * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it
+ * and leaves the output empty.
  *
  * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
  * BasisPrecision FLOAT) and an eigensolve. The basis stays in memory with the filter.

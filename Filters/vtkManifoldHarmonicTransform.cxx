@@ -109,6 +109,10 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
           "its transform is undefined. Deselect the array, or replace those values first.";
       }
       self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
+      if (self->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
+      {
+        break; // RequestData empties the output (a distributed run finishes: sums are collective)
+      }
     }
   }
   catch (const std::exception& e)
@@ -233,6 +237,9 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   }
   if (!controller && this->GetAbortExecute())
   {
+    // An aborted filter's output is empty (as VTK's executive has it), on both ports.
+    output->Initialize();
+    spectrum->Initialize();
     return 1;
   }
 

@@ -72,7 +72,7 @@ std::string Missing(vtkPolyData* input, const char* what, const char* name)
 {
   std::ostringstream message;
   message << "Missing " << what << " '" << name
-          << "': compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
+          << "': " << vtkManifoldHarmonicsArrays::MissingBasisAdvice(input);
   return message.str();
 }
 
@@ -291,5 +291,17 @@ void FillSpectrum(vtkTable* table,
       table->AddColumn(NewDoubleArray(filtered, name.c_str()));
     }
   }
+}
+
+//------------------------------------------------------------------------------
+std::string MissingBasisAdvice(vtkPolyData* input)
+{
+  if (input->GetNumberOfPoints() > 0 && input->GetNumberOfPolys() == 0 &&
+    input->GetNumberOfStrips() == 0)
+  {
+    return "the input has no polygons, so ManifoldHarmonicBasis passed it through without a "
+           "basis. Give it a surface (polygons or triangle strips).";
+  }
+  return "compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
 }
 } // namespace vtkManifoldHarmonicsArrays

@@ -119,6 +119,13 @@ void FillSpectrum(vtkTable* table,
   bool eigenvalueColumn,
   const spectral::Vector* gains,
   const std::vector<SpectrumSignal>& signals);
+
+/**
+ * The message of a filter that needs the basis arrays and did not find them: why they are
+ * missing (an input without polygons, which vtkManifoldHarmonicBasis passes through without a
+ * basis) or which filter to run upstream.
+ */
+std::string MissingBasisAdvice(vtkPolyData* input);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

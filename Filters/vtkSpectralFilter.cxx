@@ -33,13 +33,15 @@ namespace
 {
 namespace Names = vtkManifoldHarmonicsNames;
 
-/// A signal to filter: its name, its coefficients and the array it was computed from.
+/// A signal to filter: its name, its coefficients and the array it was computed from, which
+/// may be the points or the input's normals (GetNormals()).
 struct FilterJob
 {
   std::string Name;
   vtkDataArray* Coefficients;
   vtkDataArray* Source;
   bool IsPoints;
+  bool IsNormals;
 };
 
 /// The triangles of the polygons (as fans) and strips of a mesh, for its Nyquist frequency.
@@ -114,7 +116,8 @@ std::string FindJobs(vtkSpectralFilter* self,
         std::to_string(source->GetNumberOfComponents()) +
         " are expected: recompute them with ManifoldHarmonicTransform.";
     }
-    jobs.push_back({ name, coefficients, source, isPoints });
+    const bool isNormals = !isPoints && source == input->GetPointData()->GetNormals();
+    jobs.push_back({ name, coefficients, source, isPoints, isNormals });
   }
   return std::string();
 }
@@ -281,11 +284,11 @@ void WriteSignal(const FilterJob& job,
   const std::string name =
     replace ? job.Name : Names::Concatenate(job.Name.c_str(), Names::FilteredSuffix);
   const char* arrayName = job.IsPoints ? job.Source->GetName() : name.c_str();
-  // Filtered normals that take the place of the active normals are normals again: unit length.
-  const bool activeNormals = !job.IsPoints && replace && values.cols() == 3 &&
-    output->GetPointData()->GetNormals() == job.Source;
+  // Filtered normals (of the array the input marks as its normals) are normals again: unit
+  // length, whether they replace the input's or are added as <Normals>_Filtered.
+  const bool normals = job.IsNormals && values.cols() == 3;
   vtkSmartPointer<vtkDataArray> filtered = vtkManifoldHarmonicsArrays::NewArrayLike(
-    job.Source, activeNormals ? UnitRows(values) : values, arrayName);
+    job.Source, normals ? UnitRows(values) : values, arrayName);
   if (job.IsPoints)
   {
     vtkNew<vtkPoints> points;
@@ -509,6 +512,9 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())
       {
+        // An aborted filter's output is empty (as VTK's executive has it), on both ports.
+        output->Initialize();
+        spectrum->Initialize();
         return 1;
       }
     }
@@ -524,13 +530,15 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
 //------------------------------------------------------------------------------
 void vtkSpectralFilter::UpdateEdgeSums(vtkPolyData* input)
 {
-  // The mesh is walked again only when the input changed (a new upstream execution): changing
-  // the filter's settings alone re-uses the sums.
-  if (input->GetMTime() != this->EdgeSumsTime)
+  // The mesh is walked again only when the input changed (a new upstream execution, or another
+  // input object, which may have the same MTime): changing the filter's settings alone re-uses
+  // the sums.
+  if (input != this->EdgeSumsInput.GetPointer() || input->GetMTime() != this->EdgeSumsTime)
   {
     const std::vector<double> sums = ::EdgeSums(input);
     this->EdgeSums[0] = sums[0];
     this->EdgeSums[1] = sums[1];
+    this->EdgeSumsInput = input;
     this->EdgeSumsTime = input->GetMTime();
   }
 }

@@ -25,8 +25,9 @@
  * - `<Array>_Coefficients`: the filtered array is added as `<Array>_Filtered`, or replaces
  *   `<Array>` when ReplaceInput is on. Either way it has the type of the input array
  *   (NewInstance); integer arrays (e.g. unsigned char colours) are rounded and clamped to their
- *   type's range. Filtered active normals that replace the input's (ReplaceInput on) are
- *   scaled back to unit length; `<Normals>_Filtered` is left as the filter made it.
+ *   type's range. Filtered normals (the array the input marks as its normals, GetNormals()) are
+ *   scaled back to unit length, whether they replace the input's or are added as
+ *   `<Normals>_Filtered`.
  * - Like VTK's smoothing filters, the filter passes the other point data on unchanged: point
  *   normals of the input no longer match filtered points unless they are filtered too (select
  *   them on the transform, ReplaceInput on) or recomputed downstream (vtkPolyDataNormals,
@@ -61,6 +62,7 @@
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkWeakPointer.h" // For the input of the kept edge sums
 
 class vtkDoubleArray;
 class vtkTable;
@@ -260,11 +262,14 @@ protected:
 
   /**
    * The sum of the edge lengths of the input's triangles and their number, behind the Nyquist
-   * frequency of the re-injection, kept with the MTime of the input they were computed on
-   * (EdgeSumsTime): when only the filter's settings change, the mesh is not walked again.
+   * frequency of the re-injection, kept with the input object they were computed on
+   * (EdgeSumsInput) and its MTime then (EdgeSumsTime): when only the filter's settings change,
+   * the mesh is not walked again. Another input object recomputes them even with the same
+   * MTime (as vtkManifoldHarmonicSmoothing keys its basis).
    */
   void UpdateEdgeSums(vtkPolyData* input);
   double EdgeSums[2] = { 0.0, 0.0 };
+  vtkWeakPointer<vtkPolyData> EdgeSumsInput;
   vtkMTimeType EdgeSumsTime = 0;
 
   double FrequencyRange[2];
