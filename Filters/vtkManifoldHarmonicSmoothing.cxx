@@ -62,7 +62,7 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   : NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
   , CutoffFraction(0.5)
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
-
+  , NumberOfThreads(0)
   , Input(vtkSmartPointer<vtkPolyData>::New())
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
@@ -135,9 +135,11 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
     output->Initialize();
     return 1;
   }
+  this->Transform->SetNumberOfThreads(this->NumberOfThreads);
   this->Transform->Update();
   this->UpdateProgress(0.9);
   this->SetProgressText("Spectral filter");
+  this->Filter->SetNumberOfThreads(this->NumberOfThreads);
   this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
   this->Filter->Update(); // collective: before any process returns
   if (this->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
@@ -195,4 +197,5 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BasisPrecision: "
      << (this->BasisPrecision == vtkManifoldHarmonicBasis::FLOAT ? "Float" : "Double")
      << " (default Double)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
 }

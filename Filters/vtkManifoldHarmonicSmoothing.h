@@ -30,6 +30,7 @@
  * - CutoffFraction (default 0.5, range [0.001, 1]): the cutoff as a fraction of omega_max.
  * - BasisPrecision (default vtkManifoldHarmonicBasis::DOUBLE): the precision of the internal
  *   basis; FLOAT halves its memory and changes the smoothed points by float round-off only.
+ * - NumberOfThreads (default 0, all cores): the threads of the transform and filter stages.
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
@@ -106,6 +107,16 @@ public:
   void SetBasisPrecisionToDouble() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::DOUBLE); }
   ///@}
 
+  ///@{
+  /**
+   * Number of threads of the transform and filter stages (vtkManifoldHarmonicTransform and
+   * vtkSpectralFilter::SetNumberOfThreads); 0 uses all the machine's cores. Range
+   * [0, VTK_INT_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
@@ -117,6 +128,7 @@ protected:
   int NumberOfHarmonics;
   double CutoffFraction;
   int BasisPrecision;
+  int NumberOfThreads;
 
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.

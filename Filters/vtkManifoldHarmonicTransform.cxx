@@ -100,7 +100,7 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
       const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
       coefficients.push_back(
         { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
-          basis.ForwardTransform(mass, signal.View(), 0) });
+          basis.ForwardTransform(mass, signal.View(), self->GetNumberOfThreads()) });
       if (!coefficients.back().Values.allFinite())
       {
         // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
@@ -129,6 +129,7 @@ vtkManifoldHarmonicTransform::vtkManifoldHarmonicTransform()
   , SelectionObserver(vtkCallbackCommand::New())
 {
   this->TransformPoints = true;
+  this->NumberOfThreads = 0;
   this->SetNumberOfOutputPorts(2);
   this->SelectionObserver->SetCallback(&SelectionModified);
   this->SelectionObserver->SetClientData(this);
@@ -267,7 +268,9 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
 void vtkManifoldHarmonicTransform::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off") << "\n";
+  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off")
+     << " (default On)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
   os << indent << "PointDataArraySelection: (empty by default)\n";
   this->PointDataArraySelection->PrintSelf(os, indent.GetNextIndent());
 }

@@ -319,6 +319,7 @@ vtkSpectralFilter::vtkSpectralFilter()
   this->Time = 0.0;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
+  this->NumberOfThreads = 0;
   std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, this->FrequencyRange);
   std::copy(InitialTimeRange, InitialTimeRange + 2, this->TimeRange);
   this->SetNumberOfOutputPorts(2);
@@ -507,7 +508,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
       const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
       const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
       const spectral::RowMatrix y = basis.FilterSignal(
-        mass, gains, coefficients.View(), x.View(), highFrequencyGain, 0);
+        mass, gains, coefficients.View(), x.View(), highFrequencyGain, this->NumberOfThreads);
       WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())
@@ -563,4 +564,5 @@ void vtkSpectralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReinjectHighFrequencies: " << (this->ReinjectHighFrequencies ? "On" : "Off")
      << " (default On)\n";
   os << indent << "ReplaceInput: " << (this->ReplaceInput ? "On" : "Off") << " (default Off)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
 }

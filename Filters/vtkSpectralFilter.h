@@ -196,6 +196,16 @@ public:
   vtkBooleanMacro(ReplaceInput, bool);
   ///@}
 
+  ///@{
+  /**
+   * Number of threads the filter stage splits the rows of the basis over; 0 uses all the
+   * machine's cores (the core's rule, Filters/Spectral/Common/Threads.h). Results of different
+   * thread counts are the same. Range [0, VTK_INT_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
   /**
    * Suffix of the filtered arrays added when ReplaceInput is off: `_Filtered`.
    */
@@ -258,6 +268,7 @@ protected:
   double Time;
   bool ReinjectHighFrequencies;
   bool ReplaceInput;
+  int NumberOfThreads;
   vtkDoubleArray* ControlPoints;
 
   /**

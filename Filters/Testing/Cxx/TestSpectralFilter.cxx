@@ -842,6 +842,36 @@ bool TestNyquistSameMTime()
 }
 
 //------------------------------------------------------------------------------
+// NumberOfThreads (transform and filter): 0 (all cores) by default, never negative, and the
+// results of one and two threads agree to round-off.
+bool TestNumberOfThreads()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 30, { "A" });
+  bool ok = Check(pipeline.Transform->GetNumberOfThreads() == 0 &&
+      pipeline.Filter->GetNumberOfThreads() == 0,
+    "NumberOfThreads does not default to 0");
+  pipeline.Filter->SetNumberOfThreads(-3);
+  ok &= Check(pipeline.Filter->GetNumberOfThreads() == 0, "a negative NumberOfThreads is kept");
+  // A cutoff that keeps the harmonics up to degree 3 (the default 1 leaves the centroid only,
+  // whose coordinates are round-off).
+  pipeline.Filter->SetCutoff(4.0);
+  pipeline.Transform->SetNumberOfThreads(1);
+  pipeline.Filter->SetNumberOfThreads(1);
+  vtkNew<vtkPolyData> one;
+  one->DeepCopy(pipeline.Run());
+  pipeline.Transform->SetNumberOfThreads(2);
+  pipeline.Filter->SetNumberOfThreads(2);
+  vtkPolyData* two = pipeline.Run();
+  const double points = RelativeDifference(two->GetPoints()->GetData(), one->GetPoints()->GetData());
+  const double a = RelativeDifference(
+    two->GetPointData()->GetArray("A_Filtered"), one->GetPointData()->GetArray("A_Filtered"));
+  std::cout << "One thread vs two: points " << points << ", A " << a << std::endl;
+  ok &= Check(points < 1e-12 && a < 1e-12, "one and two threads disagree");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // Changing the filter's parameters re-executes the filter alone.
 bool TestInteractive()
 {
@@ -945,6 +975,7 @@ int TestSpectralFilter(int, char*[])
   ok &= TestUnusedPoint();
   ok &= TestNyquistFollowsInput();
   ok &= TestNyquistSameMTime();
+  ok &= TestNumberOfThreads();
   ok &= TestAbort();
   ok &= TestInteractive();
   ok &= TestMissingInputs();
