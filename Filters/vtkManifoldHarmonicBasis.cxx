@@ -13,6 +13,8 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
+#include "vtkManifoldHarmonicsParameters.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
@@ -36,6 +38,11 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkManifoldHarmonicBasis);
+
+// The wrapped constant repeats the core's default for Python and the XML: they must agree.
+static_assert(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS ==
+    spectral::DefaultNumberOfHarmonics,
+  "the default number of harmonics has its home in Spectral/Common/Defaults.h");
 
 namespace
 {
@@ -318,7 +325,7 @@ spectral::Monitor FilterMonitor(vtkManifoldHarmonicBasis* self)
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
-  : NumberOfHarmonics(100)
+  : NumberOfHarmonics(DEFAULT_NUMBER_OF_HARMONICS)
   , MassMatrix(LUMPED)
   , Laplacian(COTANGENT)
   , BandSize(0)
@@ -327,6 +334,24 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , BasisPrecision(DOUBLE)
   , MemoryLimit(0.0)
 {
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicBasis::HarmonicsArrayName()
+{
+  return vtkManifoldHarmonicsNames::Harmonics;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicBasis::MassArrayName()
+{
+  return vtkManifoldHarmonicsNames::Mass;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkManifoldHarmonicBasis::EigenvaluesArrayName()
+{
+  return vtkManifoldHarmonicsNames::Eigenvalues;
 }
 
 //------------------------------------------------------------------------------
@@ -467,7 +492,7 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
 //------------------------------------------------------------------------------
 void vtkManifoldHarmonicBasis::SetNumberOfHarmonics(int m)
 {
-  if (vtkManifoldHarmonicsArrays::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
+  if (vtkManifoldHarmonicsParameters::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
     m != this->NumberOfHarmonics)
   {
     this->NumberOfHarmonics = m;
@@ -479,7 +504,8 @@ void vtkManifoldHarmonicBasis::SetNumberOfHarmonics(int m)
 void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << " (default 100)\n";
+  os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << " (default "
+     << DEFAULT_NUMBER_OF_HARMONICS << ")\n";
   os << indent << "Mass Matrix: " << (this->MassMatrix == CONSISTENT ? "Consistent" : "Lumped")
      << " (default Lumped)\n";
   os << indent << "Laplacian: "

@@ -29,16 +29,16 @@
  * - field data EigenvaluesArrayName() ("ManifoldHarmonicsEigenvalues"): vtkDoubleArray with m
  *   tuples, the eigenvalues in ascending order.
  *
- * Parameters: NumberOfHarmonics (default 100), MassMatrix (default LUMPED), Laplacian (default
- * COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles), BasisPrecision
- * (default DOUBLE; FLOAT halves the harmonics array), the solver settings BandSize (default 0,
- * automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and MemoryLimit
- * (default 0: the memory the system reports available).
+ * Parameters: NumberOfHarmonics (default DEFAULT_NUMBER_OF_HARMONICS), MassMatrix (default LUMPED),
+ * Laplacian (default COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles),
+ * BasisPrecision (default DOUBLE; FLOAT halves the harmonics array), the solver settings BandSize
+ * (default 0, automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and
+ * MemoryLimit (default 0: the memory the system reports available).
  *
  * Memory: before it assembles anything, the filter estimates the memory the computation needs
  * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
- * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed, how
- * much is available and what to change if it does not fit, instead of being killed by the
+ * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed,
+ * how much is available and what to change if it does not fit, instead of being killed by the
  * system during a long solve.
  *
  * The output can be written with the mesh (vtkXMLPolyDataWriter, binary or ASCII data mode) and
@@ -47,8 +47,8 @@
  *
  * The eigenproblem is solved band by band with shift-invert block Lanczos iterations on sparse
  * LDL^T factorizations of L - sigma M (CHOLMOD); the inertia of each factorization proves that
- * no eigenpair was missed (see Filters/Spectral/Solver/EigenSolver.h). The filter reports progress during
- * the solve and honours AbortExecute: an aborted execution leaves the output empty.
+ * no eigenpair was missed (see Filters/Spectral/Solver/EigenSolver.h). The filter reports progress
+ * during the solve and honours AbortExecute: an aborted execution leaves the output empty.
  *
  * Distributed runs (MPI: pvbatch, pvserver): when the global controller has several processes
  * and more than one holds triangles, the pieces are gathered on process 0, the points they share
@@ -92,9 +92,9 @@ class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPolyDataA
 {
 public:
   /**
-   * Construct with 100 harmonics, the lumped mass matrix, the cotangent Laplacian, a double
-   * basis, automatic band size, tolerance 1e-11, 1000 iterations at most and the memory the
-   * system reports available as the limit.
+   * Construct with DEFAULT_NUMBER_OF_HARMONICS harmonics, the lumped mass matrix, the cotangent
+   * Laplacian, a double basis, automatic band size, tolerance 1e-11, 1000 iterations at most and
+   * the memory the system reports available as the limit.
    */
   static vtkManifoldHarmonicBasis* New();
 
@@ -118,12 +118,23 @@ public:
     CONSISTENT = 1
   };
 
+  /**
+   * The default NumberOfHarmonics, here and in vtkManifoldHarmonicSmoothing: the wrapped copy of
+   * spectral::DefaultNumberOfHarmonics (Filters/Spectral/Common/Defaults.h, the one home of that
+   * value; a static_assert keeps them equal), against which the ParaView XML is checked by
+   * Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in.
+   */
+  enum DefaultNumberOfHarmonics
+  {
+    DEFAULT_NUMBER_OF_HARMONICS = 100
+  };
+
   ///@{
   /**
    * Number m of harmonics (eigenpairs) to compute, lowest frequencies first: at least 1 (a
    * smaller value is refused with an error and the previous value kept), clamped at execution
    * to the number of points that triangles use (with a warning). The cost grows with m: memory
-   * n x m, time roughly n x m^2. Default is 100.
+   * n x m, time roughly n x m^2. Default is DEFAULT_NUMBER_OF_HARMONICS.
    */
   virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);
@@ -208,6 +219,7 @@ public:
    * The value type of the harmonics array. FLOAT: vtkFloatArray, half the memory of DOUBLE;
    * the eigensolver still works in double and the values are rounded once when written (relative
    * error about 6e-8), which is far below what filtering a shape needs. DOUBLE: vtkDoubleArray.
+   * The one declaration of these values: vtkManifoldHarmonicSmoothing uses them too.
    */
   enum BasisPrecisionType
   {
@@ -234,8 +246,8 @@ public:
   /**
    * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
    * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
-   * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it, the
-   * filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
+   * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it,
+   * the filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
    * FLOAT or a smaller BandSize) and produces an empty output. Set a limit to keep room for other
    * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
    */
@@ -247,11 +259,12 @@ public:
   /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
    * lumped mass ("ManifoldHarmonicsMass") and the field data eigenvalues
-   * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names.
+   * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names,
+   * whose home is the module's private vtkManifoldHarmonicsNames.h.
    */
-  static const char* HarmonicsArrayName() { return "ManifoldHarmonics"; }
-  static const char* MassArrayName() { return "ManifoldHarmonicsMass"; }
-  static const char* EigenvaluesArrayName() { return "ManifoldHarmonicsEigenvalues"; }
+  static const char* HarmonicsArrayName();
+  static const char* MassArrayName();
+  static const char* EigenvaluesArrayName();
   ///@}
 
 protected:

@@ -9,23 +9,20 @@
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
-#include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
+#include "vtkManifoldHarmonicsParameters.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
 
+#include "Spectral/Common/Eigenvalues.h"
+
 #include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkManifoldHarmonicSmoothing);
-
-static_assert(static_cast<int>(vtkManifoldHarmonicSmoothing::FLOAT) ==
-      static_cast<int>(vtkManifoldHarmonicBasis::FLOAT) &&
-    static_cast<int>(vtkManifoldHarmonicSmoothing::DOUBLE) ==
-      static_cast<int>(vtkManifoldHarmonicBasis::DOUBLE),
-  "BasisPrecision is passed on to vtkManifoldHarmonicBasis as is");
 
 namespace
 {
@@ -35,7 +32,7 @@ namespace
 double HighestFrequency(vtkPolyData* basisOutput)
 {
   vtkDataArray* lambda =
-    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
   if (!lambda || lambda->GetNumberOfTuples() == 0)
   {
     return 0.0;
@@ -49,21 +46,23 @@ double HighestFrequency(vtkPolyData* basisOutput)
 bool OnlyConstantHarmonics(vtkPolyData* basisOutput, vtkSpectralFilter* filter)
 {
   vtkDataArray* lambda =
-    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
   if (!lambda || lambda->GetNumberOfTuples() == 0)
   {
     return false; // no basis (an empty piece of a distributed run)
   }
-  return !vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(
-    lambda->GetTuple1(lambda->GetNumberOfTuples() - 1), filter->GetNyquistFrequency());
+  const double top = lambda->GetTuple1(lambda->GetNumberOfTuples() - 1);
+  const double nyquist = filter->GetNyquistFrequency();
+  return spectral::IsZeroEigenvalue(top, nyquist * nyquist) || !std::isfinite(top);
 }
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
-  : NumberOfHarmonics(100)
+  : NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
   , CutoffFraction(0.5)
-  , BasisPrecision(DOUBLE)
+  , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
+  , NumberOfThreads(0)
   , Input(vtkSmartPointer<vtkPolyData>::New())
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
@@ -130,15 +129,24 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->Update();
   if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
   {
-    // The aborted basis is incomplete: the next execution computes it afresh.
+    // The aborted basis is incomplete: the next execution computes it afresh. An aborted
+    // filter's output is empty (as VTK's executive has it).
     this->Basis->Modified();
+    output->Initialize();
     return 1;
   }
+  this->Transform->SetNumberOfThreads(this->NumberOfThreads);
   this->Transform->Update();
   this->UpdateProgress(0.9);
   this->SetProgressText("Spectral filter");
+  this->Filter->SetNumberOfThreads(this->NumberOfThreads);
   this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
   this->Filter->Update(); // collective: before any process returns
+  if (this->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
+  {
+    output->Initialize();
+    return 1;
+  }
   if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
   {
     vtkErrorMacro(<< "The " << this->NumberOfHarmonics
@@ -161,13 +169,17 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   }
   output->SetPoints(filtered->GetPoints());
   this->UpdateProgress(1.0);
+  if (this->GetAbortExecute())
+  {
+    output->Initialize();
+  }
   return 1;
 }
 
 //------------------------------------------------------------------------------
 void vtkManifoldHarmonicSmoothing::SetNumberOfHarmonics(int m)
 {
-  if (vtkManifoldHarmonicsArrays::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
+  if (vtkManifoldHarmonicsParameters::AcceptNumberOfHarmonics(this, m, this->NumberOfHarmonics) &&
     m != this->NumberOfHarmonics)
   {
     this->NumberOfHarmonics = m;
@@ -179,8 +191,11 @@ void vtkManifoldHarmonicSmoothing::SetNumberOfHarmonics(int m)
 void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default 100)\n";
+  os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default "
+     << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n";
   os << indent << "CutoffFraction: " << this->CutoffFraction << " (default 0.5)\n";
-  os << indent << "BasisPrecision: " << (this->BasisPrecision == FLOAT ? "Float" : "Double")
+  os << indent << "BasisPrecision: "
+     << (this->BasisPrecision == vtkManifoldHarmonicBasis::FLOAT ? "Float" : "Double")
      << " (default Double)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
 }

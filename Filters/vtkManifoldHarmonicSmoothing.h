@@ -24,15 +24,18 @@
  * surface: recompute them downstream (vtkPolyDataNormals).
  *
  * Parameters:
- * - NumberOfHarmonics (default 100): the m harmonics computed; more harmonics keep finer details
- *   below the cutoff and cost more time (see vtkManifoldHarmonicBasis).
+ * - NumberOfHarmonics (default vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS): the m
+ *   harmonics computed; more harmonics keep finer details below the cutoff and cost more time
+ *   (see vtkManifoldHarmonicBasis).
  * - CutoffFraction (default 0.5, range [0.001, 1]): the cutoff as a fraction of omega_max.
- * - BasisPrecision (default DOUBLE): the precision of the internal basis; FLOAT halves its
- *   memory and changes the smoothed points by float round-off only.
+ * - BasisPrecision (default vtkManifoldHarmonicBasis::DOUBLE): the precision of the internal
+ *   basis; FLOAT halves its memory and changes the smoothed points by float round-off only.
+ * - NumberOfThreads (default 0, all cores): the threads of the transform and filter stages.
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
- * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it.
+ * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it
+ * and leaves the output empty.
  *
  * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
  * BasisPrecision FLOAT) and an eigensolve. The basis stays in memory with the filter.
@@ -45,12 +48,12 @@
 #ifndef vtkManifoldHarmonicSmoothing_h
 #define vtkManifoldHarmonicSmoothing_h
 
+#include "vtkManifoldHarmonicBasis.h"   // For BasisPrecisionType, DEFAULT_NUMBER_OF_HARMONICS
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // For the internal pipeline
 #include "vtkWeakPointer.h"  // For the internal pipeline
 
-class vtkManifoldHarmonicBasis;
 class vtkManifoldHarmonicTransform;
 class vtkPolyData;
 class vtkSpectralFilter;
@@ -73,7 +76,7 @@ public:
    * refused with an error and the previous value kept), clamped at execution to the number of
    * points triangles use. It must exceed the number of connected components of the surface,
    * whose harmonics are constant (frequency 0): with no other harmonic the execution fails with
-   * an error and an empty output. Default is 100.
+   * an error and an empty output. Default is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS.
    */
   virtual void SetNumberOfHarmonics(int m);
   vtkGetMacro(NumberOfHarmonics, int);
@@ -89,27 +92,29 @@ public:
   vtkGetMacro(CutoffFraction, double);
   ///@}
 
+  ///@{
   /**
-   * The value type of the internal basis, as vtkManifoldHarmonicBasis::BasisPrecisionType
-   * (same values): FLOAT for a vtkFloatArray, DOUBLE for a vtkDoubleArray.
+   * Precision of the basis computed internally, passed on to
+   * vtkManifoldHarmonicBasis::SetBasisPrecision: one of vtkManifoldHarmonicBasis'
+   * BasisPrecisionType values (declared there only). vtkManifoldHarmonicBasis::FLOAT halves
+   * the memory of its n x m harmonics; the eigensolver still works in double and the smoothed
+   * points differ from DOUBLE's by float round-off. Default is vtkManifoldHarmonicBasis::DOUBLE.
    */
-  enum BasisPrecisionType
-  {
-    FLOAT = 0,
-    DOUBLE = 1
-  };
+  vtkSetClampMacro(
+    BasisPrecision, int, vtkManifoldHarmonicBasis::FLOAT, vtkManifoldHarmonicBasis::DOUBLE);
+  vtkGetMacro(BasisPrecision, int);
+  void SetBasisPrecisionToFloat() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::FLOAT); }
+  void SetBasisPrecisionToDouble() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::DOUBLE); }
+  ///@}
 
   ///@{
   /**
-   * Precision of the basis computed internally (vtkManifoldHarmonicBasis::BasisPrecision):
-   * FLOAT (0) halves the memory of its n x m harmonics; the eigensolver still works in double
-   * and the smoothed points differ from DOUBLE's by float round-off. DOUBLE (1). Default is
-   * DOUBLE.
+   * Number of threads of the transform and filter stages (vtkManifoldHarmonicTransform and
+   * vtkSpectralFilter::SetNumberOfThreads); 0 uses all the machine's cores. Range
+   * [0, VTK_INT_MAX]. Default is 0.
    */
-  vtkSetClampMacro(BasisPrecision, int, FLOAT, DOUBLE);
-  vtkGetMacro(BasisPrecision, int);
-  void SetBasisPrecisionToFloat() { this->SetBasisPrecision(FLOAT); }
-  void SetBasisPrecisionToDouble() { this->SetBasisPrecision(DOUBLE); }
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
   ///@}
 
 protected:
@@ -123,6 +128,7 @@ protected:
   int NumberOfHarmonics;
   double CutoffFraction;
   int BasisPrecision;
+  int NumberOfThreads;
 
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.

@@ -6,10 +6,9 @@
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -29,7 +28,7 @@ vtkStandardNewMacro(vtkManifoldHarmonicTransform);
 
 namespace
 {
-using vtkManifoldHarmonicsArrays::Concatenate;
+namespace Names = vtkManifoldHarmonicsNames;
 
 /// A signal to transform: its name in the output and the array holding it.
 using NamedSignal = std::pair<std::string, vtkDataArray*>;
@@ -42,8 +41,7 @@ void SelectionModified(vtkObject*, unsigned long, void* clientData, void*)
 bool IsBasisArray(const char* name)
 {
   const std::string text(name);
-  return text == vtkManifoldHarmonicBasis::HarmonicsArrayName() ||
-    text == vtkManifoldHarmonicBasis::MassArrayName();
+  return text == Names::Harmonics || text == Names::Mass;
 }
 
 /// The signals to transform: the coordinates, then the enabled point-data arrays in input order.
@@ -53,7 +51,7 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
   const bool points = self->GetTransformPoints();
   if (points)
   {
-    signals.emplace_back(vtkManifoldHarmonicTransform::PointsName(), input->GetPoints()->GetData());
+    signals.emplace_back(Names::Points, input->GetPoints()->GetData());
   }
   vtkPointData* pointData = input->GetPointData();
   for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
@@ -64,7 +62,7 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
     {
       continue;
     }
-    if (points && std::string(name) == vtkManifoldHarmonicTransform::PointsName())
+    if (points && std::string(name) == Names::Points)
     {
       vtkWarningWithObjectMacro(self,
         << "Point-data array '" << name
@@ -76,37 +74,6 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
   return signals;
 }
 
-/// The Index, Eigenvalue and Frequency columns of the spectrum.
-void AddFrequencyColumns(const spectral::Vector& lambda, vtkTable* spectrum)
-{
-  const vtkIdType m = lambda.size();
-  vtkNew<vtkIdTypeArray> index;
-  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
-  index->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> eigenvalue;
-  eigenvalue->SetName(vtkManifoldHarmonicTransform::EigenvalueColumnName());
-  eigenvalue->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> frequency;
-  frequency->SetName(vtkManifoldHarmonicTransform::FrequencyColumnName());
-  frequency->SetNumberOfTuples(m);
-  for (vtkIdType k = 0; k < m; ++k)
-  {
-    index->SetValue(k, k);
-    eigenvalue->SetValue(k, lambda[k]);
-    frequency->SetValue(k, std::sqrt(std::max(lambda[k], 0.0)));
-  }
-  spectrum->AddColumn(index);
-  spectrum->AddColumn(eigenvalue);
-  spectrum->AddColumn(frequency);
-}
-
-/// The Euclidean norm of each coefficient tuple, as a spectrum column.
-vtkSmartPointer<vtkDoubleArray> Magnitudes(const spectral::RowMatrix& coefficients,
-  const std::string& name)
-{
-  const spectral::RowMatrix norms = coefficients.rowwise().norm();
-  return vtkManifoldHarmonicsArrays::NewDoubleArray(norms, name.c_str());
-}
 /// The coefficients of the selected signals summed over the points of this process, which a
 /// ghost array may mark as duplicates of another process's points (those count 0).
 /// \return An error message, empty on success.
@@ -131,9 +98,9 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
     for (std::size_t s = 0; s < signals.size(); ++s)
     {
       const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
-      coefficients.push_back({ Concatenate(signals[s].first.c_str(),
-                                 vtkManifoldHarmonicTransform::CoefficientsSuffix()),
-        basis.ForwardTransform(mass, signal.View()) });
+      coefficients.push_back(
+        { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
+          basis.ForwardTransform(mass, signal.View(), self->GetNumberOfThreads()) });
       if (!coefficients.back().Values.allFinite())
       {
         // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
@@ -142,6 +109,10 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
           "its transform is undefined. Deselect the array, or replace those values first.";
       }
       self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
+      if (self->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
+      {
+        break; // RequestData empties the output (a distributed run finishes: sums are collective)
+      }
     }
   }
   catch (const std::exception& e)
@@ -158,6 +129,7 @@ vtkManifoldHarmonicTransform::vtkManifoldHarmonicTransform()
   , SelectionObserver(vtkCallbackCommand::New())
 {
   this->TransformPoints = true;
+  this->NumberOfThreads = 0;
   this->SetNumberOfOutputPorts(2);
   this->SelectionObserver->SetCallback(&SelectionModified);
   this->SelectionObserver->SetClientData(this);
@@ -187,37 +159,37 @@ vtkTable* vtkManifoldHarmonicTransform::GetSpectrumOutput()
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::CoefficientsSuffix()
 {
-  return "_Coefficients";
+  return Names::CoefficientsSuffix;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::MagnitudeSuffix()
 {
-  return "_Magnitude";
+  return Names::MagnitudeSuffix;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::PointsName()
 {
-  return "Points";
+  return Names::Points;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::IndexColumnName()
 {
-  return "Index";
+  return Names::IndexColumn;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::EigenvalueColumnName()
 {
-  return "Eigenvalue";
+  return Names::EigenvalueColumn;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkManifoldHarmonicTransform::FrequencyColumnName()
 {
-  return "Frequency";
+  return Names::FrequencyColumn;
 }
 
 //------------------------------------------------------------------------------
@@ -251,7 +223,8 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   // Local sums over the points of this process (all of them in a serial run).
   std::vector<vtkManifoldHarmonicsParallel::NamedMatrix> coefficients;
   spectral::Vector lambda;
-  std::string problem = empty ? std::string() : LocalCoefficients(this, input, coefficients, lambda);
+  std::string problem =
+    empty ? std::string() : LocalCoefficients(this, input, coefficients, lambda);
 
   // Distributed run: every process holds a partial sum; add them up (collective, even on
   // processes without data or with an error, so that no process waits forever).
@@ -266,22 +239,25 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   }
   if (!controller && this->GetAbortExecute())
   {
+    // An aborted filter's output is empty (as VTK's executive has it), on both ports.
+    output->Initialize();
+    spectrum->Initialize();
     return 1;
   }
 
   // The spectrum table once: on process 0 of a distributed run, whose table ParaView shows.
   if (lambda.size() > 0 && (!controller || controller->GetLocalProcessId() == 0))
   {
-    AddFrequencyColumns(lambda, spectrum);
+    const std::size_t suffix = std::string(Names::CoefficientsSuffix).size();
+    std::vector<vtkManifoldHarmonicsArrays::SpectrumSignal> signals;
     for (const auto& signal : coefficients)
     {
-      const std::string name =
-        signal.Name.substr(0, signal.Name.size() - std::string(CoefficientsSuffix()).size());
-      spectrum->AddColumn(Magnitudes(signal.Values, Concatenate(name.c_str(), MagnitudeSuffix())));
+      signals.push_back({ signal.Name.substr(0, signal.Name.size() - suffix), signal.Values });
     }
+    vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, true, nullptr, signals);
   }
-  for (const auto& signal : empty ? std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>()
-                                  : coefficients)
+  for (const auto& signal :
+    empty ? std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>() : coefficients)
   {
     output->GetFieldData()->AddArray(
       vtkManifoldHarmonicsArrays::NewDoubleArray(signal.Values, signal.Name.c_str()));
@@ -293,7 +269,9 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
 void vtkManifoldHarmonicTransform::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off") << "\n";
+  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off")
+     << " (default On)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
   os << indent << "PointDataArraySelection: (empty by default)\n";
   this->PointDataArraySelection->PrintSelf(os, indent.GetNextIndent());
 }

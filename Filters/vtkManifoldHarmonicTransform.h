@@ -36,6 +36,9 @@
  * - PointDataArraySelection (default: nothing enabled): the point-data arrays to transform. Any
  *   numeric type and any number of components; arrays that are not double are converted to double
  *   once. The basis arrays themselves are never transformed.
+ * - NumberOfThreads (default 0, all cores): the threads the transform runs on.
+ *
+ * Progress is reported after each signal; an abort (AbortExecute) leaves both outputs empty.
  *
  * The coefficients feed vtkSpectralFilter, which multiplies them by a transfer function and
  * reconstructs the signals.
@@ -86,6 +89,16 @@ public:
   vtkBooleanMacro(TransformPoints, bool);
   ///@}
 
+  ///@{
+  /**
+   * Number of threads the transform splits the rows of the basis over; 0 uses all the
+   * machine's cores (the core's rule, Filters/Spectral/Common/Threads.h). The coefficients of
+   * different thread counts differ by round-off only. Range [0, VTK_INT_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
   /**
    * The point-data arrays to transform: an array is transformed when it is listed and enabled
    * (e.g. `GetPointDataArraySelection()->EnableArray("Normals")`). Default: empty, so only the
@@ -123,6 +136,7 @@ protected:
     vtkInformationVector* outputVector) override;
 
   bool TransformPoints;
+  int NumberOfThreads;
   vtkDataArraySelection* PointDataArraySelection;
   vtkCallbackCommand* SelectionObserver;
 

@@ -6,10 +6,12 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkObject.h"
-#include "vtkManifoldHarmonicBasis.h"
+#include "vtkIdTypeArray.h"
+#include "vtkManifoldHarmonicsNames.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkTable.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,11 +68,11 @@ spectral::RowMatrix InPlace(const vtkManifoldHarmonicsArrays::Basis& basis, cons
   return f(spectral::BasisView(basis.Doubles, basis.NumberOfPoints, basis.NumberOfHarmonics));
 }
 
-std::string Missing(const char* what, const char* name)
+std::string Missing(vtkPolyData* input, const char* what, const char* name)
 {
   std::ostringstream message;
   message << "Missing " << what << " '" << name
-          << "': compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
+          << "': " << vtkManifoldHarmonicsArrays::MissingBasisAdvice(input);
   return message.str();
 }
 
@@ -88,10 +90,11 @@ namespace vtkManifoldHarmonicsArrays
 {
 //------------------------------------------------------------------------------
 spectral::RowMatrix Basis::ForwardTransform(
-  const spectral::Vector& mass, const spectral::ConstRowView& X) const
+  const spectral::Vector& mass, const spectral::ConstRowView& X, int threads) const
 {
   return InPlace(*this,
-    [&mass, &X](const auto& H) { return spectral::ForwardTransform(H, mass, X); });
+    [&mass, &X, threads](const auto& H)
+    { return spectral::ForwardTransform(H, mass, X, threads); });
 }
 
 //------------------------------------------------------------------------------
@@ -99,11 +102,12 @@ spectral::RowMatrix Basis::FilterSignal(const spectral::Vector& mass,
   const spectral::Vector& gains,
   const spectral::ConstRowView& coefficients,
   const spectral::ConstRowView& X,
-  double hfGain) const
+  double hfGain,
+  int threads) const
 {
   return InPlace(*this,
-    [&mass, &gains, &coefficients, &X, hfGain](const auto& H)
-    { return spectral::FilterSignal(H, mass, gains, coefficients, X, hfGain); });
+    [&mass, &gains, &coefficients, &X, hfGain, threads](const auto& H)
+    { return spectral::FilterSignal(H, mass, gains, coefficients, X, hfGain, threads); });
 }
 
 //------------------------------------------------------------------------------
@@ -121,23 +125,23 @@ spectral::Vector Basis::EigenvalueVector() const
 //------------------------------------------------------------------------------
 std::string FindBasis(vtkPolyData* input, Basis& basis)
 {
-  const char* harmonicsName = vtkManifoldHarmonicBasis::HarmonicsArrayName();
-  const char* massName = vtkManifoldHarmonicBasis::MassArrayName();
-  const char* eigenvaluesName = vtkManifoldHarmonicBasis::EigenvaluesArrayName();
+  const char* harmonicsName = vtkManifoldHarmonicsNames::Harmonics;
+  const char* massName = vtkManifoldHarmonicsNames::Mass;
+  const char* eigenvaluesName = vtkManifoldHarmonicsNames::Eigenvalues;
   vtkDataArray* harmonics = input->GetPointData()->GetArray(harmonicsName);
   basis.Mass = input->GetPointData()->GetArray(massName);
   basis.Eigenvalues = input->GetFieldData()->GetArray(eigenvaluesName);
   if (!harmonics)
   {
-    return Missing("point data array", harmonicsName);
+    return Missing(input, "point data array", harmonicsName);
   }
   if (!basis.Mass)
   {
-    return Missing("point data array", massName);
+    return Missing(input, "point data array", massName);
   }
   if (!basis.Eigenvalues)
   {
-    return Missing("field data array", eigenvaluesName);
+    return Missing(input, "field data array", eigenvaluesName);
   }
   basis.Harmonics = harmonics;
   if (auto* doubles = vtkArrayDownCast<vtkAOSDataArrayTemplate<double>>(harmonics))
@@ -248,26 +252,56 @@ vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
 }
 
 //------------------------------------------------------------------------------
-std::string Concatenate(const char* name, const char* suffix)
+void FillSpectrum(vtkTable* table,
+  const spectral::Vector& lambda,
+  bool eigenvalueColumn,
+  const spectral::Vector* gains,
+  const std::vector<SpectrumSignal>& signals)
 {
-  return std::string(name ? name : "") + suffix;
-}
-//------------------------------------------------------------------------------
-bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
-{
-  if (requested < 1)
+  namespace Names = vtkManifoldHarmonicsNames;
+  const vtkIdType m = lambda.size();
+  vtkNew<vtkIdTypeArray> index;
+  index->SetName(Names::IndexColumn);
+  index->SetNumberOfTuples(m);
+  spectral::RowMatrix frequency(m, 1);
+  for (vtkIdType k = 0; k < m; ++k)
   {
-    vtkErrorWithObjectMacro(self,
-      << "NumberOfHarmonics must be at least 1, not " << requested << "; it stays " << current
-      << ".");
-    return false;
+    index->SetValue(k, k);
+    frequency(k, 0) = std::sqrt(std::max(lambda[k], 0.0));
   }
-  return true;
+  table->AddColumn(index);
+  if (eigenvalueColumn)
+  {
+    table->AddColumn(NewDoubleArray(lambda, Names::EigenvalueColumn));
+  }
+  table->AddColumn(NewDoubleArray(frequency, Names::FrequencyColumn));
+  if (gains)
+  {
+    table->AddColumn(NewDoubleArray(*gains, Names::GainColumn));
+  }
+  for (const SpectrumSignal& signal : signals)
+  {
+    const spectral::RowMatrix magnitude = signal.Coefficients.rowwise().norm();
+    table->AddColumn(NewDoubleArray(
+      magnitude, Names::Concatenate(signal.Name.c_str(), Names::MagnitudeSuffix).c_str()));
+    if (gains)
+    {
+      const spectral::RowMatrix filtered = gains->cwiseAbs().cwiseProduct(magnitude.col(0));
+      const std::string name = signal.Name + Names::FilteredSuffix + Names::MagnitudeSuffix;
+      table->AddColumn(NewDoubleArray(filtered, name.c_str()));
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
-bool IsNonZeroEigenvalue(double lambda, double nyquist)
+std::string MissingBasisAdvice(vtkPolyData* input)
 {
-  return lambda > 1e-10 * nyquist * nyquist && std::isfinite(lambda);
+  if (input->GetNumberOfPoints() > 0 && input->GetNumberOfPolys() == 0 &&
+    input->GetNumberOfStrips() == 0)
+  {
+    return "the input has no polygons, so ManifoldHarmonicBasis passed it through without a "
+           "basis. Give it a surface (polygons or triangle strips).";
+  }
+  return "compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
 }
 } // namespace vtkManifoldHarmonicsArrays

@@ -2,12 +2,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file vtkManifoldHarmonicsArrays.h
- * @brief Private helpers shared by the filters of the module.
+ * @brief Private helpers of the filters: VTK arrays as Eigen matrices and back.
  *
  * They find and check the arrays of vtkManifoldHarmonicBasis on a data set, view VTK arrays as
- * Eigen matrices (without a copy for vtkDoubleArray) and write Eigen matrices back into VTK
- * arrays. The basis array may be a vtkDoubleArray or a vtkFloatArray (BasisPrecision); both are
- * read in place. Not installed and not wrapped: this header includes Eigen.
+ * Eigen matrices (without a copy for vtkDoubleArray), write Eigen matrices back into VTK
+ * arrays and fill the spectrum tables. Array names come from vtkManifoldHarmonicsNames.h; no
+ * filter's header is included. The basis array may be a vtkDoubleArray or a vtkFloatArray
+ * (BasisPrecision); both are read in place. Not installed and not wrapped: this header includes
+ * Eigen.
  */
 #ifndef vtkManifoldHarmonicsArrays_h
 #define vtkManifoldHarmonicsArrays_h
@@ -17,11 +19,12 @@
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkDataArray;
 class vtkDoubleArray;
-class vtkObject;
 class vtkPolyData;
+class vtkTable;
 
 namespace vtkManifoldHarmonicsArrays
 {
@@ -41,20 +44,22 @@ struct Basis
   const float* Floats = nullptr;
 
   /**
-   * spectral::ForwardTransform on the harmonics in place, in their precision, on the default
-   * number of threads (spectral::TransformThreads).
+   * spectral::ForwardTransform on the harmonics in place, in their precision, on `threads`
+   * threads (0: the core's default, see Common/Threads.h).
    */
-  spectral::RowMatrix ForwardTransform(
-    const spectral::Vector& mass, const spectral::ConstRowView& X) const;
+  spectral::RowMatrix ForwardTransform(const spectral::Vector& mass,
+    const spectral::ConstRowView& X,
+    int threads) const;
   /**
    * spectral::FilterSignal (inverse transform with re-injection, points of zero mass kept) on
-   * the harmonics in place, in their precision, on the default number of threads.
+   * the harmonics in place, in their precision, on `threads` threads (0: the core's default).
    */
   spectral::RowMatrix FilterSignal(const spectral::Vector& mass,
     const spectral::Vector& gains,
     const spectral::ConstRowView& coefficients,
     const spectral::ConstRowView& X,
-    double hfGain) const;
+    double hfGain,
+    int threads) const;
   /// The mass as a vector of length n.
   spectral::Vector MassVector() const;
   /// The eigenvalues as a vector of length m.
@@ -96,24 +101,33 @@ vtkSmartPointer<vtkDataArray> NewArrayLike(vtkDataArray* prototype,
   const spectral::RowMatrix& values,
   const char* name);
 
-/// `name` + `suffix`.
-std::string Concatenate(const char* name, const char* suffix);
+/// A signal of the spectrum table: its name and its m by c coefficients.
+struct SpectrumSignal
+{
+  std::string Name;
+  spectral::RowMatrix Coefficients;
+};
 
 /**
- * Whether `requested` may become the NumberOfHarmonics of `self` (vtkManifoldHarmonicBasis,
- * vtkManifoldHarmonicSmoothing): at least 1. If not, an error of `self` says so and that the
- * `current` value stays.
+ * Fill the spectrum table (output port 1) of vtkManifoldHarmonicTransform and of
+ * vtkSpectralFilter, one row per harmonic k: `Index` (k), `Eigenvalue` (lambda_k, with
+ * `eigenvalueColumn`), `Frequency` (omega_k = sqrt(max(lambda_k, 0))), `Gain` (gains_k, when
+ * `gains` is given), then per signal `<Signal>_Magnitude` (the norm of coefficient row k) and,
+ * with gains, `<Signal>_Filtered_Magnitude` (|gains_k| times it). Names from
+ * vtkManifoldHarmonicsNames.h.
  */
-bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current);
+void FillSpectrum(vtkTable* table,
+  const spectral::Vector& lambda,
+  bool eigenvalueColumn,
+  const spectral::Vector* gains,
+  const std::vector<SpectrumSignal>& signals);
 
 /**
- * Whether eigenvalue `lambda` belongs to a non-constant harmonic, i.e. is clear of the zero
- * eigenvalues of the constant harmonics (one per connected component), which come out at
- * round-off of the Laplacian. Its largest eigenvalues are of the order of nyquist^2 (nyquist =
- * pi / mean edge length, vtkSpectralFilter::GetNyquistFrequency()), so the threshold is
- * 1e-10 nyquist^2; with nyquist 0 (no triangle of finite size) any positive finite value counts.
+ * The message of a filter that needs the basis arrays and did not find them: why they are
+ * missing (an input without polygons, which vtkManifoldHarmonicBasis passes through without a
+ * basis) or which filter to run upstream.
  */
-bool IsNonZeroEigenvalue(double lambda, double nyquist);
+std::string MissingBasisAdvice(vtkPolyData* input);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -8,7 +8,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
-#include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -104,7 +104,8 @@ void MergePiece(int rank,
   for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
   {
     const vtkIdType ids[3] = { map[triangles->GetTypedComponent(t, 0)],
-      map[triangles->GetTypedComponent(t, 1)], map[triangles->GetTypedComponent(t, 2)] };
+      map[triangles->GetTypedComponent(t, 1)],
+      map[triangles->GetTypedComponent(t, 2)] };
     mergedTriangles->InsertNextCell(3, ids);
   }
 }
@@ -127,8 +128,8 @@ void PieceRows(int rank,
   for (vtkIdType i = 0; i < n; ++i)
   {
     const vtkIdType j = map[i];
-    std::copy(harmonics.row(j).data(), harmonics.row(j).data() + m,
-      piece.Harmonics->GetPointer(i * m));
+    std::copy(
+      harmonics.row(j).data(), harmonics.row(j).data() + m, piece.Harmonics->GetPointer(i * m));
     piece.Mass->SetValue(i, mass[j]);
     piece.Duplicates->SetValue(
       i, merged.Owner[j] == rank ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
@@ -166,8 +167,8 @@ void SendMatrices(vtkMultiProcessController* controller,
   {
     SendArray(controller, ToArray(matrix.Name, matrix.Values), remote, SumTag);
   }
-  SendArray(controller, ToArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName(), eigenvalues),
-    remote, SumTag);
+  SendArray(
+    controller, ToArray(vtkManifoldHarmonicsNames::Eigenvalues, eigenvalues), remote, SumTag);
 }
 
 //------------------------------------------------------------------------------
@@ -209,8 +210,10 @@ bool Accumulate(const std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>& ma
   bool ok = true;
   for (const auto& matrix : matrices)
   {
-    auto found = std::find_if(sums.begin(), sums.end(),
-      [&matrix](const vtkManifoldHarmonicsParallel::NamedMatrix& s) { return s.Name == matrix.Name; });
+    auto found = std::find_if(sums.begin(),
+      sums.end(),
+      [&matrix](const vtkManifoldHarmonicsParallel::NamedMatrix& s)
+      { return s.Name == matrix.Name; });
     if (found == sums.end())
     {
       sums.push_back(matrix);
@@ -267,8 +270,9 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
   std::vector<vtkSmartPointer<vtkIdTypeArray>> allTriangles(size);
   allPoints[0] = points;
   allTriangles[0] = triangles;
-  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN,
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+  double bounds[6] = {
+    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN
+  };
   for (int r = 0; r < size; ++r)
   {
     if (r > 0)
@@ -294,9 +298,9 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
   vtkNew<vtkPoints> mergedPoints;
   mergedPoints->SetDataTypeToDouble();
   vtkNew<vtkPointLocator> merger;
-  const double diagonal = std::sqrt(vtkMath::Distance2BetweenPoints(
-    std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
-    std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
+  const double diagonal = std::sqrt(
+    vtkMath::Distance2BetweenPoints(std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
+      std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
   merger->SetTolerance(1e-12 * std::max(diagonal, 1e-300));
   merger->InitPointInsertion(mergedPoints, bounds);
   vtkNew<vtkCellArray> mergedTriangles;

@@ -6,12 +6,10 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
-#include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -20,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Spectral/Common/Eigenvalues.h"
 #include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
@@ -32,15 +31,17 @@ vtkStandardNewMacro(vtkSpectralFilter);
 
 namespace
 {
-using vtkManifoldHarmonicsArrays::Concatenate;
+namespace Names = vtkManifoldHarmonicsNames;
 
-/// A signal to filter: its name, its coefficients and the array it was computed from.
+/// A signal to filter: its name, its coefficients and the array it was computed from, which
+/// may be the points or the input's normals (GetNormals()).
 struct FilterJob
 {
   std::string Name;
   vtkDataArray* Coefficients;
   vtkDataArray* Source;
   bool IsPoints;
+  bool IsNormals;
 };
 
 /// The triangles of the polygons (as fans) and strips of a mesh, for its Nyquist frequency.
@@ -83,7 +84,7 @@ std::string FindJobs(vtkSpectralFilter* self,
   const vtkManifoldHarmonicsArrays::Basis& basis,
   std::vector<FilterJob>& jobs)
 {
-  const std::string suffix = vtkManifoldHarmonicTransform::CoefficientsSuffix();
+  const std::string suffix = Names::CoefficientsSuffix;
   vtkFieldData* fieldData = input->GetFieldData();
   for (int a = 0; a < fieldData->GetNumberOfArrays(); ++a)
   {
@@ -96,7 +97,7 @@ std::string FindJobs(vtkSpectralFilter* self,
       continue;
     }
     const std::string name = arrayName.substr(0, arrayName.size() - suffix.size());
-    const bool isPoints = name == vtkManifoldHarmonicTransform::PointsName();
+    const bool isPoints = name == Names::Points;
     vtkDataArray* source =
       isPoints ? input->GetPoints()->GetData() : input->GetPointData()->GetArray(name.c_str());
     if (!source)
@@ -115,16 +116,46 @@ std::string FindJobs(vtkSpectralFilter* self,
         std::to_string(source->GetNumberOfComponents()) +
         " are expected: recompute them with ManifoldHarmonicTransform.";
     }
-    jobs.push_back({ name, coefficients, source, isPoints });
+    const bool isNormals = !isPoints && source == input->GetPointData()->GetNormals();
+    jobs.push_back({ name, coefficients, source, isPoints, isNormals });
   }
   return std::string();
+}
+
+/// The core's FilterKind of a vtkSpectralFilter::FilterKinds value: the checked conversion
+/// between the two declarations (the XML's EnumerationDomain is checked against the C++ enum by
+/// Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in).
+/// \throws spectral::InvalidInput for a value that is none of the kinds.
+spectral::FilterKind ToFilterKind(int kind)
+{
+  switch (kind)
+  {
+    case vtkSpectralFilter::LOW_PASS:
+      return spectral::FilterKind::LowPass;
+    case vtkSpectralFilter::HIGH_PASS:
+      return spectral::FilterKind::HighPass;
+    case vtkSpectralFilter::BAND_PASS:
+      return spectral::FilterKind::BandPass;
+    case vtkSpectralFilter::BAND_STOP:
+      return spectral::FilterKind::BandStop;
+    case vtkSpectralFilter::ENHANCEMENT:
+      return spectral::FilterKind::Enhancement;
+    case vtkSpectralFilter::BAND_EXAGGERATION:
+      return spectral::FilterKind::BandExaggeration;
+    case vtkSpectralFilter::HEAT_DIFFUSION:
+      return spectral::FilterKind::HeatDiffusion;
+    case vtkSpectralFilter::CUSTOM:
+      return spectral::FilterKind::Custom;
+    default:
+      throw spectral::InvalidInput("FilterKind " + std::to_string(kind) + " is none of the kinds");
+  }
 }
 
 /// The parameters of the core transfer function.
 spectral::FilterParameters Parameters(vtkSpectralFilter* self)
 {
   spectral::FilterParameters parameters;
-  parameters.Kind = static_cast<spectral::FilterKind>(self->GetFilterKind());
+  parameters.Kind = ToFilterKind(self->GetFilterKind());
   parameters.Cutoff = self->GetCutoff();
   parameters.UpperCutoff = self->GetUpperCutoff();
   parameters.Transition = self->GetTransition();
@@ -152,8 +183,8 @@ std::vector<double> EdgeSums(vtkPolyData* input)
   return sums;
 }
 
-/// The Nyquist frequency pi / (mean edge length) of the whole mesh from the EdgeSums of this
-/// process: in a distributed run the sums of all processes are added up (collective).
+/// The Nyquist frequency (spectral::NyquistFrequency) of the whole mesh from the EdgeSums of
+/// this process: in a distributed run the sums of all processes are added up (collective).
 /// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
 double NyquistFrequency(vtkMultiProcessController* controller, std::vector<double> sums)
 {
@@ -161,8 +192,7 @@ double NyquistFrequency(vtkMultiProcessController* controller, std::vector<doubl
   {
     vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
   }
-  const double h = sums[1] > 0.0 ? sums[0] / sums[1] : 0.0;
-  return h > 0.0 && std::isfinite(h) ? vtkMath::Pi() / h : 0.0;
+  return spectral::NyquistFrequency(sums[0], sums[1]);
 }
 
 /// Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
@@ -185,37 +215,12 @@ void FillSpectrum(const spectral::Vector& lambda,
   const std::vector<FilterJob>& jobs,
   vtkTable* spectrum)
 {
-  const vtkIdType m = lambda.size();
-  vtkNew<vtkIdTypeArray> index;
-  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
-  index->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> frequency;
-  frequency->SetName(vtkManifoldHarmonicTransform::FrequencyColumnName());
-  frequency->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> gain;
-  gain->SetName(vtkSpectralFilter::GainColumnName());
-  gain->SetNumberOfTuples(m);
-  for (vtkIdType k = 0; k < m; ++k)
-  {
-    index->SetValue(k, k);
-    frequency->SetValue(k, std::sqrt(std::max(lambda[k], 0.0)));
-    gain->SetValue(k, gains[k]);
-  }
-  spectrum->AddColumn(index);
-  spectrum->AddColumn(frequency);
-  spectrum->AddColumn(gain);
-  const std::string magnitude = vtkManifoldHarmonicTransform::MagnitudeSuffix();
-  const std::string filtered = vtkSpectralFilter::FilteredSuffix();
+  std::vector<vtkManifoldHarmonicsArrays::SpectrumSignal> signals;
   for (const FilterJob& job : jobs)
   {
-    const vtkManifoldHarmonicsArrays::Signal coefficients(job.Coefficients);
-    const spectral::RowMatrix before = coefficients.View().rowwise().norm();
-    const spectral::RowMatrix after = gains.cwiseAbs().cwiseProduct(before.col(0));
-    spectrum->AddColumn(
-      vtkManifoldHarmonicsArrays::NewDoubleArray(before, (job.Name + magnitude).c_str()));
-    spectrum->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
-      after, (job.Name + filtered + magnitude).c_str()));
+    signals.push_back({ job.Name, vtkManifoldHarmonicsArrays::Signal(job.Coefficients).View() });
   }
+  vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, false, &gains, signals);
 }
 
 /// The slider ranges of a filter that has not run, or ran on constant harmonics only: they keep
@@ -225,14 +230,15 @@ constexpr double InitialTimeRange[2] = { 0.0, 1.0 };
 
 /// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
 /// GetTimeRange) from the eigenvalues of the basis; [0, 2] and [0, 1] when the basis has no
-/// non-constant harmonic.
+/// non-constant harmonic. Zero eigenvalues by spectral::IsZeroEigenvalue with the scale omega_N^2.
 void SliderRanges(const spectral::Vector& lambda,
   double nyquist,
   double frequency[2],
   double time[2])
 {
-  const auto nonZero = [nyquist](double value)
-  { return vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(value, nyquist); };
+  const double scale = nyquist * nyquist;
+  const auto nonZero = [scale](double value)
+  { return !spectral::IsZeroEigenvalue(value, scale) && std::isfinite(value); };
   std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, frequency);
   std::copy(InitialTimeRange, InitialTimeRange + 2, time);
   if (lambda.size() == 0 || !nonZero(lambda[lambda.size() - 1]))
@@ -276,13 +282,13 @@ void WriteSignal(const FilterJob& job,
 {
   const bool replace = job.IsPoints || replaceInput;
   const std::string name =
-    replace ? job.Name : Concatenate(job.Name.c_str(), vtkSpectralFilter::FilteredSuffix());
+    replace ? job.Name : Names::Concatenate(job.Name.c_str(), Names::FilteredSuffix);
   const char* arrayName = job.IsPoints ? job.Source->GetName() : name.c_str();
-  // Filtered normals that take the place of the active normals are normals again: unit length.
-  const bool activeNormals = !job.IsPoints && replace && values.cols() == 3 &&
-    output->GetPointData()->GetNormals() == job.Source;
+  // Filtered normals (of the array the input marks as its normals) are normals again: unit
+  // length, whether they replace the input's or are added as <Normals>_Filtered.
+  const bool normals = job.IsNormals && values.cols() == 3;
   vtkSmartPointer<vtkDataArray> filtered = vtkManifoldHarmonicsArrays::NewArrayLike(
-    job.Source, activeNormals ? UnitRows(values) : values, arrayName);
+    job.Source, normals ? UnitRows(values) : values, arrayName);
   if (job.IsPoints)
   {
     vtkNew<vtkPoints> points;
@@ -313,6 +319,7 @@ vtkSpectralFilter::vtkSpectralFilter()
   this->Time = 0.0;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
+  this->NumberOfThreads = 0;
   std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, this->FrequencyRange);
   std::copy(InitialTimeRange, InitialTimeRange + 2, this->TimeRange);
   this->SetNumberOfOutputPorts(2);
@@ -341,7 +348,7 @@ vtkTable* vtkSpectralFilter::GetSpectrumOutput()
 //------------------------------------------------------------------------------
 const char* vtkSpectralFilter::GainColumnName()
 {
-  return "Gain";
+  return Names::GainColumn;
 }
 
 //------------------------------------------------------------------------------
@@ -353,7 +360,7 @@ vtkSpectralFilter::~vtkSpectralFilter()
 //------------------------------------------------------------------------------
 const char* vtkSpectralFilter::FilteredSuffix()
 {
-  return "_Filtered";
+  return Names::FilteredSuffix;
 }
 
 //------------------------------------------------------------------------------
@@ -484,8 +491,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     }
     if (jobs.empty())
     {
-      vtkWarningMacro(<< "Nothing to filter: no '<Array>"
-                      << vtkManifoldHarmonicTransform::CoefficientsSuffix()
+      vtkWarningMacro(<< "Nothing to filter: no '<Array>" << Names::CoefficientsSuffix
                       << "' field data; apply ManifoldHarmonicTransform upstream.");
       return 1;
     }
@@ -501,12 +507,15 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
       // The points no triangle uses (zero mass) keep their input values.
       const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
       const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
-      const spectral::RowMatrix y =
-        basis.FilterSignal(mass, gains, coefficients.View(), x.View(), highFrequencyGain);
+      const spectral::RowMatrix y = basis.FilterSignal(
+        mass, gains, coefficients.View(), x.View(), highFrequencyGain, this->NumberOfThreads);
       WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
       this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
       if (this->GetAbortExecute())
       {
+        // An aborted filter's output is empty (as VTK's executive has it), on both ports.
+        output->Initialize();
+        spectrum->Initialize();
         return 1;
       }
     }
@@ -522,13 +531,15 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
 //------------------------------------------------------------------------------
 void vtkSpectralFilter::UpdateEdgeSums(vtkPolyData* input)
 {
-  // The mesh is walked again only when the input changed (a new upstream execution): changing
-  // the filter's settings alone re-uses the sums.
-  if (input->GetMTime() != this->EdgeSumsTime)
+  // The mesh is walked again only when the input changed (a new upstream execution, or another
+  // input object, which may have the same MTime): changing the filter's settings alone re-uses
+  // the sums.
+  if (input != this->EdgeSumsInput.GetPointer() || input->GetMTime() != this->EdgeSumsTime)
   {
     const std::vector<double> sums = ::EdgeSums(input);
     this->EdgeSums[0] = sums[0];
     this->EdgeSums[1] = sums[1];
+    this->EdgeSumsInput = input;
     this->EdgeSumsTime = input->GetMTime();
   }
 }
@@ -553,4 +564,5 @@ void vtkSpectralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReinjectHighFrequencies: " << (this->ReinjectHighFrequencies ? "On" : "Off")
      << " (default On)\n";
   os << indent << "ReplaceInput: " << (this->ReplaceInput ? "On" : "Off") << " (default Off)\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
 }

@@ -25,8 +25,9 @@
  * - `<Array>_Coefficients`: the filtered array is added as `<Array>_Filtered`, or replaces
  *   `<Array>` when ReplaceInput is on. Either way it has the type of the input array
  *   (NewInstance); integer arrays (e.g. unsigned char colours) are rounded and clamped to their
- *   type's range. Filtered active normals that replace the input's (ReplaceInput on) are
- *   scaled back to unit length; `<Normals>_Filtered` is left as the filter made it.
+ *   type's range. Filtered normals (the array the input marks as its normals, GetNormals()) are
+ *   scaled back to unit length, whether they replace the input's or are added as
+ *   `<Normals>_Filtered`.
  * - Like VTK's smoothing filters, the filter passes the other point data on unchanged: point
  *   normals of the input no longer match filtered points unless they are filtered too (select
  *   them on the transform, ReplaceInput on) or recomputed downstream (vtkPolyDataNormals,
@@ -61,6 +62,7 @@
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkWeakPointer.h" // For the input of the kept edge sums
 
 class vtkDoubleArray;
 class vtkTable;
@@ -78,7 +80,10 @@ public:
   ///@}
 
   /**
-   * The transfer functions; the values match the ParaView enumeration and spectral::FilterKind.
+   * The transfer functions: the one declaration of their values. The core's
+   * spectral::FilterKind is converted from them by a checked switch (vtkSpectralFilter.cxx), and
+   * the ParaView enumeration is checked against them by
+   * Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in.
    */
   enum FilterKinds
   {
@@ -191,6 +196,16 @@ public:
   vtkBooleanMacro(ReplaceInput, bool);
   ///@}
 
+  ///@{
+  /**
+   * Number of threads the filter stage splits the rows of the basis over; 0 uses all the
+   * machine's cores (the core's rule, Filters/Spectral/Common/Threads.h). Results of different
+   * thread counts are the same. Range [0, VTK_INT_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
   /**
    * Suffix of the filtered arrays added when ReplaceInput is off: `_Filtered`.
    */
@@ -216,8 +231,9 @@ public:
    * parameters): FrequencyRange = [0, omega_max], omega_max = sqrt(lambda_{m-1}) the highest
    * computed frequency (for Cutoff and UpperCutoff), and TimeRange = [0, 4 / lambda_1], where
    * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time).
-   * Eigenvalues below 1e-10 omega_N^2 (omega_N the Nyquist frequency, see the class
-   * documentation) are the zero eigenvalues of the constant harmonics. Before the first
+   * The zero eigenvalues of the constant harmonics are told from the others by
+   * spectral::IsZeroEigenvalue (Filters/Spectral/Common/Eigenvalues.h) with the scale omega_N^2
+   * (omega_N the Nyquist frequency, see the class documentation). Before the first
    * execution, and after one on a basis of constant harmonics only, [0, 2] and [0, 1]: the panel
    * takes its default values from these ranges (Cutoff at the middle, UpperCutoff at the top,
    * Time at the bottom), which keeps them at 1, 2 and 0.
@@ -252,15 +268,19 @@ protected:
   double Time;
   bool ReinjectHighFrequencies;
   bool ReplaceInput;
+  int NumberOfThreads;
   vtkDoubleArray* ControlPoints;
 
   /**
    * The sum of the edge lengths of the input's triangles and their number, behind the Nyquist
-   * frequency of the re-injection, kept with the MTime of the input they were computed on
-   * (EdgeSumsTime): when only the filter's settings change, the mesh is not walked again.
+   * frequency of the re-injection, kept with the input object they were computed on
+   * (EdgeSumsInput) and its MTime then (EdgeSumsTime): when only the filter's settings change,
+   * the mesh is not walked again. Another input object recomputes them even with the same
+   * MTime (as vtkManifoldHarmonicSmoothing keys its basis).
    */
   void UpdateEdgeSums(vtkPolyData* input);
   double EdgeSums[2] = { 0.0, 0.0 };
+  vtkWeakPointer<vtkPolyData> EdgeSumsInput;
   vtkMTimeType EdgeSumsTime = 0;
 
   double FrequencyRange[2];

@@ -4,7 +4,7 @@
 //
 //   ManifoldHarmonicFilter input.(ply|obj|stl|vtp) output.vtp [options]
 //
-// The options and their defaults are in OptionsHelp below (printed by --help).
+// The options and their defaults are in PrintUsage below (printed by --help).
 //
 // The filtered coordinates replace the points; the output also holds the basis arrays and the
 // coefficients of the points. Run by CTest on Testing/Data/bunny.ply.
@@ -43,7 +43,7 @@ struct Options
 {
   std::string Input;
   std::string Output;
-  int Harmonics = 100;
+  int Harmonics = vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS;
   std::string KindName = "lowpass";
   int Kind = vtkSpectralFilter::LOW_PASS;
   double Cutoff = -1.0; // < 0: half the highest computed frequency
@@ -53,9 +53,8 @@ struct Options
   bool Reinject = true;
 };
 
+// After "--help" and "--harmonics", whose default PrintUsage takes from vtkManifoldHarmonicBasis.
 const char* const OptionsHelp =
-  "  --help          this text\n"
-  "  --harmonics m   number of harmonics (default 100)\n"
   "  --kind k        lowpass, highpass, bandpass, bandstop, enhancement, exaggeration, heat,\n"
   "                  custom: a ramp from gain 1 at 0 to 0 at the cutoff (default lowpass)\n"
   "  --cutoff w      cutoff frequency (default: half the highest computed frequency)\n"
@@ -66,7 +65,11 @@ const char* const OptionsHelp =
 
 void PrintUsage(std::ostream& os, const char* program)
 {
-  os << "Usage: " << program << " input.(ply|obj|stl|vtp) output.vtp [options]\n" << OptionsHelp;
+  os << "Usage: " << program << " input.(ply|obj|stl|vtp) output.vtp [options]\n"
+     << "  --help          this text\n"
+     << "  --harmonics m   number of harmonics (default "
+     << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n"
+     << OptionsHelp;
 }
 
 /// The lower-case extension of a file name, without the dot ("" without one).

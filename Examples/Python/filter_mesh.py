@@ -62,8 +62,9 @@ def parse_arguments(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("input", help="surface mesh: .ply, .obj, .stl or .vtp")
     parser.add_argument("output", help="filtered mesh, .vtp")
-    parser.add_argument("--harmonics", type=positive_int, default=100,
-                        help="number of harmonics, at least 1 (default 100)")
+    default_harmonics = vtkManifoldHarmonicBasis.DEFAULT_NUMBER_OF_HARMONICS
+    parser.add_argument("--harmonics", type=positive_int, default=default_harmonics,
+                        help="number of harmonics, at least 1 (default %d)" % default_harmonics)
     parser.add_argument("--kind", choices=sorted(KINDS), default="lowpass",
                         help="transfer function (default lowpass)")
     parser.add_argument("--cutoff", type=non_negative_float, default=None,

@@ -22,6 +22,7 @@ set(spectral_core_sources
 set(spectral_core_headers
   Basis.h
   Common/Defaults.h
+  Common/Eigenvalues.h
   Operators/Laplacian.h
   Common/Mesh.h
   Common/Monitor.h

@@ -6,6 +6,7 @@
 #include "Solver/EigenSolver.h"
 #include "Meshes.h"
 #include "Operators/Operators.h"
+#include "Common/Eigenvalues.h"
 #include "Common/Threads.h"
 #include "Filtering/Transfer.h"
 
@@ -437,6 +438,45 @@ void Nyquist()
   CheckNear(NyquistFrequency(Rectangle(2.0, 1.0, 20, 10)), Pi / h, 1e-12,
     "Nyquist frequency of a 2 x 1 grid of 20 x 10 cells: pi / mean edge");
   CheckThrows<InvalidInput>([]() { NyquistFrequency(TriangleMesh()); }, "mesh without triangles");
+
+  // From edge sums added up over pieces (the distributed filter): the two halves of the grid's
+  // triangles, each summing its own edges, give the frequency of the whole.
+  const TriangleMesh grid = Rectangle(2.0, 1.0, 20, 10);
+  double sums[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } };
+  for (Eigen::Index f = 0; f < grid.Faces.rows(); ++f)
+  {
+    double (&piece)[2] = sums[2 * f < grid.Faces.rows() ? 0 : 1];
+    for (int c = 0; c < 3; ++c)
+    {
+      piece[0] += (grid.Vertices.row(grid.Faces(f, (c + 1) % 3)) -
+        grid.Vertices.row(grid.Faces(f, c))).norm();
+      piece[1] += 1.0;
+    }
+  }
+  CheckNear(NyquistFrequency(sums[0][0] + sums[1][0], sums[0][1] + sums[1][1]), Pi / h, 1e-12,
+    "Nyquist frequency from the edge sums of two pieces");
+  Check(NyquistFrequency(0.0, 0.0) == 0.0, "no edge: Nyquist frequency 0, not a division by 0");
+  Check(NyquistFrequency(0.0, 6.0) == 0.0, "edges of zero length: Nyquist frequency 0");
+  Check(NyquistFrequency(std::numeric_limits<double>::infinity(), 6.0) == 0.0,
+    "infinite edge lengths: Nyquist frequency 0");
+}
+
+//------------------------------------------------------------------------------
+// The zero-eigenvalue rule (Common/Eigenvalues.h) on a computed spectrum with the mesh's scale
+// omega_N^2: the constant harmonic's eigenvalue (round-off) is zero, lambda_1 = 2 of the unit
+// sphere is not, whichever of the top of the spectrum or omega_N^2 is the scale.
+void ZeroEigenvalues()
+{
+  const Basis b = MakeBasis(Icosphere(3), 10);
+  const double nyquist = NyquistFrequency(b.Mesh);
+  const double scale = nyquist * nyquist;
+  Check(IsZeroEigenvalue(b.Lambda[0], scale), "lambda_0 of a sphere is a zero eigenvalue");
+  Check(IsZeroEigenvalue(-std::abs(b.Lambda[0]), scale), "negative round-off is zero");
+  CheckNear(b.Lambda[1], 2.0, 0.05, "lambda_1 of the unit sphere is about l(l+1) = 2");
+  Check(!IsZeroEigenvalue(b.Lambda[1], scale), "lambda_1 of a sphere is not zero");
+  Check(!IsZeroEigenvalue(b.Lambda[1], 1e6 * scale), "lambda_1 not zero even for 1e6 omega_N^2");
+  Check(!IsZeroEigenvalue(1e-300, 0.0), "scale 0: a positive eigenvalue is not zero");
+  Check(!IsZeroEigenvalue(std::numeric_limits<double>::quiet_NaN(), scale), "NaN is not zero");
 }
 
 //------------------------------------------------------------------------------
@@ -649,6 +689,7 @@ const Case Cases[] = {
   { "MeanGains", MeanGains },
   { "HeatDiffusionLimits", HeatDiffusionLimits },
   { "Nyquist", Nyquist },
+  { "ZeroEigenvalues", ZeroEigenvalues },
   { "InvalidSizes", InvalidSizes },
   { "FloatBasisMatchesDouble", FloatBasisMatchesDouble },
   { "ThreadsMatchOneThread", ThreadsMatchOneThread },

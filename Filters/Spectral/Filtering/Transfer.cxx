@@ -432,12 +432,20 @@ Vector Gains(const FilterParameters& p, const Vector& lambda)
 }
 
 //------------------------------------------------------------------------------
+double NyquistFrequency(double edgeLengthSum, double edgeCount)
+{
+  const double h = edgeCount > 0.0 ? edgeLengthSum / edgeCount : 0.0;
+  return h > 0.0 && std::isfinite(h) ? Pi / h : 0.0;
+}
+
+//------------------------------------------------------------------------------
 double NyquistFrequency(const TriangleMesh& mesh)
 {
-  const double h = MeanEdgeLength(mesh);
-  Require(h > 0.0 && std::isfinite(h),
+  const double edges = 3.0 * static_cast<double>(mesh.Faces.rows());
+  const double nyquist = NyquistFrequency(MeanEdgeLength(mesh) * edges, edges);
+  Require(nyquist > 0.0,
     "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
-  return Pi / h;
+  return nyquist;
 }
 
 //------------------------------------------------------------------------------

@@ -166,8 +166,18 @@ double Gain(const FilterParameters& p, double omega);
 Vector Gains(const FilterParameters& p, const Vector& lambda);
 
 /**
- * Nyquist frequency of a mesh, pi / (mean edge length): the highest frequency its sampling can
- * carry, in the units of omega = sqrt(lambda).
+ * Nyquist frequency pi / h of a mesh whose mean edge length is h = edgeLengthSum / edgeCount:
+ * the highest frequency its sampling can carry, in the units of omega = sqrt(lambda). The one
+ * home of that formula. Taking the sums rather than the mesh lets the pieces of a distributed
+ * mesh add theirs up first (vtkSpectralFilter); each triangle counts its three edges, so a piece
+ * contributes MeanEdgeLength(piece) * 3 * faces and 3 * faces.
+ * \return pi / h, or 0 when there is no edge or h is not positive and finite.
+ */
+double NyquistFrequency(double edgeLengthSum, double edgeCount);
+
+/**
+ * Nyquist frequency of a mesh, pi / (mean edge length): NyquistFrequency(sum, count) over its
+ * triangles' edges.
  * \throws InvalidInput if the mesh has no triangle or only zero-length edges.
  */
 double NyquistFrequency(const TriangleMesh& mesh);

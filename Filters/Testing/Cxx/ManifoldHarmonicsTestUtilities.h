@@ -4,7 +4,13 @@
 #ifndef ManifoldHarmonicsTestUtilities_h
 #define ManifoldHarmonicsTestUtilities_h
 
+#include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +49,40 @@ inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
   }
   return difference / scale;
 }
+
+/// The points with one vertex cell each and no polygon: what vtkManifoldHarmonicBasis passes
+/// through without a basis.
+inline vtkSmartPointer<vtkPolyData> VerticesOnly(vtkPoints* points)
+{
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  auto vertices = vtkSmartPointer<vtkCellArray>::New();
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    vertices->InsertNextCell(1, &i);
+  }
+  cloud->SetVerts(vertices);
+  return cloud;
+}
+
+/// A ProgressEvent observer that counts the reports strictly inside (0, 1) (the executive
+/// reports 0 before RequestData and 1 after) and asks the reporting algorithm to abort at each.
+class AbortAtFirstProgress : public vtkCommand
+{
+public:
+  vtkTypeMacro(AbortAtFirstProgress, vtkCommand);
+  static AbortAtFirstProgress* New() { return new AbortAtFirstProgress; }
+  void Execute(vtkObject* caller, unsigned long, void* callData) override
+  {
+    const double progress = *static_cast<double*>(callData);
+    if (progress > 0.0 && progress < 1.0)
+    {
+      ++this->Count;
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    }
+  }
+  int Count = 0;
+};
 } // namespace ManifoldHarmonicsTest
 
 #endif

@@ -6,6 +6,7 @@
 
 #include "vtkManifoldHarmonicBasis.h"
 
+#include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
@@ -33,15 +34,7 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-//------------------------------------------------------------------------------
-bool Check(bool condition, const char* what)
-{
-  if (!condition)
-  {
-    std::cerr << "ERROR: " << what << std::endl;
-  }
-  return condition;
-}
+using ManifoldHarmonicsTest::Check;
 
 //------------------------------------------------------------------------------
 // Unit icosphere: the icosahedron with each triangle split in four `levels` times, points

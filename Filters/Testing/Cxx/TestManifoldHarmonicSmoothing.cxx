@@ -8,6 +8,7 @@
 
 #include "vtkManifoldHarmonicSmoothing.h"
 
+#include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
@@ -37,15 +38,7 @@
 
 namespace
 {
-//------------------------------------------------------------------------------
-bool Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "ERROR: " << what << std::endl;
-  }
-  return condition;
-}
+using ManifoldHarmonicsTest::Check;
 
 //------------------------------------------------------------------------------
 // A sphere with radial noise, so that smoothing has something to remove.
@@ -148,7 +141,7 @@ bool TestFloatBasis(vtkPolyData* input)
   smoothing->Update();
   vtkNew<vtkPoints> reference;
   reference->DeepCopy(smoothing->GetOutput()->GetPoints());
-  bool ok = Check(smoothing->GetBasisPrecision() == vtkManifoldHarmonicSmoothing::DOUBLE,
+  bool ok = Check(smoothing->GetBasisPrecision() == vtkManifoldHarmonicBasis::DOUBLE,
     "BasisPrecision defaults to DOUBLE");
   smoothing->SetBasisPrecisionToFloat();
   smoothing->Update();
@@ -310,6 +303,31 @@ bool TestReuseProgressAbort(vtkPolyData* input)
   ok &= Check(smoothing->GetOutput()->GetNumberOfPoints() == input->GetNumberOfPoints() &&
       MaxDistance(smoothing->GetOutput()->GetPoints(), fresh->GetOutput()->GetPoints()) < 1e-12,
     "the run after an abort completes");
+
+  // Abort during the filter stage (the basis kept, a new cutoff): the output is empty too, not
+  // the input with or without smoothed points.
+  vtkNew<vtkCallbackCommand> abortInFilterStage;
+  abortInFilterStage->SetCallback(
+    [](vtkObject* caller, unsigned long, void*, void* callData)
+    {
+      if (*static_cast<double*>(callData) >= 0.9)
+      {
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      }
+    });
+  const unsigned long observer =
+    smoothing->AddObserver(vtkCommand::ProgressEvent, abortInFilterStage);
+  smoothing->SetCutoffFraction(0.4);
+  smoothing->Update();
+  ok &= Check(smoothing->GetOutput()->GetNumberOfPoints() == 0 &&
+      smoothing->GetOutput()->GetNumberOfCells() == 0,
+    "a run aborted in the filter stage has an output");
+  smoothing->RemoveObserver(observer);
+  smoothing->AbortExecuteOff();
+  smoothing->Modified();
+  smoothing->Update();
+  ok &= Check(smoothing->GetOutput()->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "the run after an abort in the filter stage does not complete");
   return ok;
 }
 } // anonymous namespace

@@ -6,6 +6,8 @@
 
 #include "vtkManifoldHarmonicTransform.h"
 
+#include "ManifoldHarmonicsTestUtilities.h"
+#include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
@@ -31,15 +33,9 @@
 
 namespace
 {
-//------------------------------------------------------------------------------
-bool Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "ERROR: " << what << std::endl;
-  }
-  return condition;
-}
+using ManifoldHarmonicsTest::AbortAtFirstProgress;
+using ManifoldHarmonicsTest::Check;
+using ManifoldHarmonicsTest::VerticesOnly;
 
 //------------------------------------------------------------------------------
 // A unit sphere (double points) with a smooth scalar "Height" (float and double copies) and an
@@ -300,6 +296,54 @@ bool TestErrors()
     other->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName()));
   mismatched->SetFieldData(otherFieldData);
   ok &= ExpectError(mismatched, vtkManifoldHarmonicBasis::EigenvaluesArrayName(), "5 values");
+
+  // Points without polygons, passed through by the basis without a basis (it warns): the error
+  // says why there is no basis instead of asking for the filter that is upstream.
+  vtkSmartPointer<vtkPolyData> cloud = VerticesOnly(sphere->GetOutput()->GetPoints());
+  vtkNew<vtkManifoldHarmonicBasis> passThrough;
+  vtkNew<vtkTest::ErrorObserver> basisWarnings;
+  passThrough->AddObserver(vtkCommand::WarningEvent, basisWarnings);
+  passThrough->SetInputData(cloud);
+  passThrough->Update();
+  ok &= Check(basisWarnings->GetWarning() &&
+      passThrough->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(),
+    "set-up: the basis passes points without polygons through, with a warning");
+  ok &= ExpectError(passThrough->GetOutput(), vtkManifoldHarmonicBasis::HarmonicsArrayName(),
+    "the input has no polygons, so ManifoldHarmonicBasis passed it through without a basis");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// An abort during the transform (after the first of three signals) leaves both outputs empty,
+// as VTK's executive has it, not the mesh without coefficients; the next run is complete.
+bool TestAbort()
+{
+  vtkSmartPointer<vtkPolyData> basis = MakeBasis(10);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputData(basis);
+  transform->GetPointDataArraySelection()->EnableArray("Height");
+  transform->GetPointDataArraySelection()->EnableArray("Colors");
+  vtkNew<AbortAtFirstProgress> abort;
+  const unsigned long observer = transform->AddObserver(vtkCommand::ProgressEvent, abort);
+  transform->Update();
+  vtkPolyData* output = transform->GetOutput();
+  std::cout << "Abort: " << abort->Count << " progress report(s), " << output->GetNumberOfPoints()
+            << " points, " << transform->GetSpectrumOutput()->GetNumberOfColumns()
+            << " spectrum columns out" << std::endl;
+  bool ok = Check(abort->Count == 1, "the transform does not stop when asked to abort");
+  ok &= Check(output->GetNumberOfPoints() == 0 && output->GetNumberOfCells() == 0 &&
+      output->GetPointData()->GetNumberOfArrays() == 0 &&
+      output->GetFieldData()->GetNumberOfArrays() == 0,
+    "the output of an aborted transform is not empty");
+  ok &= Check(transform->GetSpectrumOutput()->GetNumberOfColumns() == 0,
+    "the spectrum of an aborted transform is not empty");
+  transform->RemoveObserver(observer);
+  transform->AbortExecuteOff();
+  transform->Modified();
+  transform->Update();
+  ok &= Check(transform->GetOutput()->GetNumberOfPoints() == basis->GetNumberOfPoints() &&
+      transform->GetOutput()->GetFieldData()->GetArray("Colors_Coefficients") != nullptr,
+    "the run after an abort is not complete");
   return ok;
 }
 } // anonymous namespace
@@ -312,5 +356,6 @@ int TestManifoldHarmonicTransform(int, char*[])
   ok &= TestDefinitionAndPrecision();
   ok &= TestSelectionModifies();
   ok &= TestErrors();
+  ok &= TestAbort();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -13,6 +13,7 @@
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkSpectralFilter.h"
 
+#include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArraySelection.h"
@@ -48,15 +49,7 @@
 
 namespace
 {
-//------------------------------------------------------------------------------
-bool Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "ERROR: " << what << std::endl;
-  }
-  return condition;
-}
+using ManifoldHarmonicsTest::Check;
 
 //------------------------------------------------------------------------------
 // The text of a VTK message without its "ERROR: In file, line" prefix, which the test harness

@@ -10,11 +10,13 @@
 
 #include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCommand.h"
+#include "vtkCellArray.h"
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkLinearSubdivisionFilter.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
@@ -29,6 +31,7 @@
 #include "vtkPolyDataNormals.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTable.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowedSincPolyDataFilter.h"
@@ -43,8 +46,10 @@
 
 namespace
 {
+using ManifoldHarmonicsTest::AbortAtFirstProgress;
 using ManifoldHarmonicsTest::Check;
 using ManifoldHarmonicsTest::RelativeDifference;
+using ManifoldHarmonicsTest::VerticesOnly;
 
 //------------------------------------------------------------------------------
 // Counts the executions of an algorithm (its EndEvent).
@@ -437,6 +442,18 @@ bool TestNoisySphere()
 }
 
 //------------------------------------------------------------------------------
+// max | |v_i| - 1 | over the tuples of a 3-component array.
+double MaxUnitDeviation(vtkDataArray* vectors)
+{
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < vectors->GetNumberOfTuples(); ++i)
+  {
+    worst = std::max(worst, std::abs(vtkMath::Norm(vectors->GetTuple3(i)) - 1.0));
+  }
+  return worst;
+}
+
+//------------------------------------------------------------------------------
 // Colour (unsigned char RGB) and normal (float) arrays keep their type and shape.
 bool TestColorsAndNormals()
 {
@@ -457,6 +474,9 @@ bool TestColorsAndNormals()
     "Normals_Filtered is not a finite n x 3 float array");
   ok &= Check(pd->GetNormals() == mesh->GetPointData()->GetNormals(),
     "the input normals are not kept when ReplaceInput is off");
+  // Filtered normals are normals: unit length with ReplaceInput off as well as on.
+  ok &= Check(normals && MaxUnitDeviation(normals) < 1e-6,
+    "Normals_Filtered (ReplaceInput off) are not unit vectors");
 
   // Enhancement overshoots the colour range: the values are clamped, not wrapped.
   pipeline.Filter->ReplaceInputOn();
@@ -470,12 +490,8 @@ bool TestColorsAndNormals()
       pd->GetNormals() == pd->GetArray("Normals") &&
       pd->GetNormals() != mesh->GetPointData()->GetNormals(),
     "ReplaceInput does not keep the filtered normals as the active normals");
-  double worst = 0.0;
-  for (vtkIdType i = 0; pd->GetNormals() && i < n; ++i)
-  {
-    worst = std::max(worst, std::abs(vtkMath::Norm(pd->GetNormals()->GetTuple3(i)) - 1.0));
-  }
-  ok &= Check(pd->GetNormals() && worst < 1e-6, "replaced active normals are not unit vectors");
+  ok &= Check(pd->GetNormals() && MaxUnitDeviation(pd->GetNormals()) < 1e-6,
+    "replaced active normals are not unit vectors");
   double range[2];
   colors->GetRange(range, -1);
   std::cout << "Enhanced colours (gain 3 above cutoff 3): magnitude range [" << range[0] << ", "
@@ -630,37 +646,36 @@ bool TestChaining()
 }
 
 //------------------------------------------------------------------------------
-// Counts the progress events strictly between 0 and 1 (the executive reports 0 before and 1
-// after RequestData) and asks the filter to abort at the first one.
-class AbortAtFirstProgress : public vtkCommand
-{
-public:
-  vtkTypeMacro(AbortAtFirstProgress, vtkCommand);
-  static AbortAtFirstProgress* New() { return new AbortAtFirstProgress; }
-  void Execute(vtkObject* caller, unsigned long, void* callData) override
-  {
-    const double progress = *static_cast<double*>(callData);
-    if (progress > 0.0 && progress < 1.0)
-    {
-      ++this->Count;
-      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    }
-  }
-  int Count = 0;
-};
-
-//------------------------------------------------------------------------------
-// An abort requested during execution stops the filter after the current signal, cleanly.
+// An abort requested during execution stops the filter after the current signal and leaves
+// both outputs empty (VTK's rule: an aborted filter's output is empty), not some arrays
+// filtered and others not; the next execution, the flag cleared, is complete.
 bool TestAbort()
 {
   vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
   Pipeline pipeline(mesh, 20, { "A", "B", "Sum" });
   pipeline.Transform->Update();
   vtkNew<AbortAtFirstProgress> abort;
-  pipeline.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
-  pipeline.Run();
-  std::cout << "Abort: " << abort->Count << " progress event(s) for 4 signals" << std::endl;
-  return Check(abort->Count == 1, "the filter does not stop when asked to abort");
+  const unsigned long observer =
+    pipeline.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
+  vtkPolyData* output = pipeline.Run();
+  std::cout << "Abort: " << abort->Count << " progress event(s) for 4 signals, "
+            << output->GetNumberOfPoints() << " points and "
+            << output->GetPointData()->GetNumberOfArrays() << " point arrays out" << std::endl;
+  bool ok = Check(abort->Count == 1, "the filter does not stop when asked to abort");
+  ok &= Check(output->GetNumberOfPoints() == 0 && output->GetNumberOfCells() == 0 &&
+      output->GetPointData()->GetNumberOfArrays() == 0 &&
+      output->GetFieldData()->GetNumberOfArrays() == 0,
+    "the output of an aborted filter is not empty");
+  ok &= Check(pipeline.Filter->GetSpectrumOutput()->GetNumberOfColumns() == 0,
+    "the spectrum of an aborted filter is not empty");
+  pipeline.Filter->RemoveObserver(observer);
+  pipeline.Filter->AbortExecuteOff();
+  pipeline.Filter->Modified();
+  output = pipeline.Run();
+  ok &= Check(output->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
+      output->GetPointData()->GetArray("Sum_Filtered") != nullptr,
+    "the run after an abort is not complete");
+  return ok;
 }
 
 //------------------------------------------------------------------------------
@@ -756,6 +771,107 @@ bool TestNyquistFollowsInput()
 }
 
 //------------------------------------------------------------------------------
+// pi / (mean edge length of the polygons), computed here from the cells.
+double NyquistOfPolygons(vtkPolyData* mesh)
+{
+  double sum = 0.0;
+  double count = 0.0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    mesh->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double a[3];
+      double b[3];
+      mesh->GetPoint(ids->GetId(k), a);
+      mesh->GetPoint(ids->GetId((k + 1) % ids->GetNumberOfIds()), b);
+      sum += std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+      count += 1.0;
+    }
+  }
+  return vtkMath::Pi() / (sum / count);
+}
+
+//------------------------------------------------------------------------------
+// Another input object with the same MTime as the last one (both share the points, modified
+// last) but other polygons: the filter must walk its edges, not keep the first input's Nyquist
+// frequency (which sets the re-injection gain and the slider ranges).
+bool TestNyquistSameMTime()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(40);
+  sphere->SetPhiResolution(40);
+  sphere->Update();
+  Pipeline pipeline(sphere->GetOutput(), 20, {});
+  pipeline.Transform->Update();
+  vtkNew<vtkPolyData> whole;
+  whole->ShallowCopy(pipeline.Transform->GetOutput());
+  // The polar caps: the triangles around the two poles (points 0 and 1 of vtkSphereSource).
+  vtkNew<vtkCellArray> capPolygons;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < whole->GetNumberOfCells(); ++c)
+  {
+    whole->GetCellPoints(c, ids);
+    if (ids->IsId(0) >= 0 || ids->IsId(1) >= 0)
+    {
+      capPolygons->InsertNextCell(ids);
+    }
+  }
+  vtkNew<vtkPolyData> caps;
+  caps->ShallowCopy(whole); // the basis and the coefficients, with other polygons
+  caps->SetPolys(capPolygons);
+  whole->GetPoints()->Modified();
+
+  vtkNew<vtkSpectralFilter> filter;
+  filter->SetInputData(whole);
+  filter->Update();
+  const double first = filter->GetNyquistFrequency();
+  bool ok = Check(caps->GetMTime() == whole->GetMTime(), "set-up: equal MTimes");
+  filter->SetInputData(caps);
+  filter->Update();
+  const double expected = NyquistOfPolygons(caps);
+  std::cout << "Nyquist frequency: whole sphere " << first << " (expected "
+            << NyquistOfPolygons(whole) << "), polar caps " << filter->GetNyquistFrequency()
+            << " (expected " << expected << ")" << std::endl;
+  ok &= Check(std::abs(first - NyquistOfPolygons(whole)) < 1e-12 * first,
+    "the Nyquist frequency of the whole sphere is not pi / mean edge length");
+  ok &= Check(std::abs(filter->GetNyquistFrequency() - expected) < 1e-12 * expected,
+    "a new input with the MTime of the last one kept the last one's Nyquist frequency");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// NumberOfThreads (transform and filter): 0 (all cores) by default, never negative, and the
+// results of one and two threads agree to round-off.
+bool TestNumberOfThreads()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 30, { "A" });
+  bool ok = Check(pipeline.Transform->GetNumberOfThreads() == 0 &&
+      pipeline.Filter->GetNumberOfThreads() == 0,
+    "NumberOfThreads does not default to 0");
+  pipeline.Filter->SetNumberOfThreads(-3);
+  ok &= Check(pipeline.Filter->GetNumberOfThreads() == 0, "a negative NumberOfThreads is kept");
+  // A cutoff that keeps the harmonics up to degree 3 (the default 1 leaves the centroid only,
+  // whose coordinates are round-off).
+  pipeline.Filter->SetCutoff(4.0);
+  pipeline.Transform->SetNumberOfThreads(1);
+  pipeline.Filter->SetNumberOfThreads(1);
+  vtkNew<vtkPolyData> one;
+  one->DeepCopy(pipeline.Run());
+  pipeline.Transform->SetNumberOfThreads(2);
+  pipeline.Filter->SetNumberOfThreads(2);
+  vtkPolyData* two = pipeline.Run();
+  const double points = RelativeDifference(two->GetPoints()->GetData(), one->GetPoints()->GetData());
+  const double a = RelativeDifference(
+    two->GetPointData()->GetArray("A_Filtered"), one->GetPointData()->GetArray("A_Filtered"));
+  std::cout << "One thread vs two: points " << points << ", A " << a << std::endl;
+  ok &= Check(points < 1e-12 && a < 1e-12, "one and two threads disagree");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // Changing the filter's parameters re-executes the filter alone.
 bool TestInteractive()
 {
@@ -827,6 +943,19 @@ bool TestMissingInputs()
     "no warning without coefficients");
   ok &= Check(filter->GetOutput()->GetNumberOfPoints() == sphere->GetOutput()->GetNumberOfPoints(),
     "the input does not pass through");
+
+  // Points without polygons: the basis passes them through without a basis (a warning of its
+  // own); the filter's error says so instead of asking for the basis that is upstream.
+  vtkSmartPointer<vtkPolyData> cloud = VerticesOnly(sphere->GetOutput()->GetPoints());
+  vtkNew<vtkTest::ErrorObserver> basisWarnings;
+  basis->AddObserver(vtkCommand::WarningEvent, basisWarnings);
+  basis->SetInputData(cloud);
+  filter->Update();
+  std::cout << "Expected error:" << AfterLocation(errors->GetErrorMessage());
+  ok &= Check(basisWarnings->GetWarning(), "set-up: the basis warns about the missing polygons");
+  ok &= Check(errors->CheckErrorMessage("the input has no polygons, so ManifoldHarmonicBasis "
+                                        "passed it through without a basis") == 0,
+    "the error does not say that the input has no polygons");
   return ok;
 }
 } // anonymous namespace
@@ -845,6 +974,8 @@ int TestSpectralFilter(int, char*[])
   ok &= TestChaining();
   ok &= TestUnusedPoint();
   ok &= TestNyquistFollowsInput();
+  ok &= TestNyquistSameMTime();
+  ok &= TestNumberOfThreads();
   ok &= TestAbort();
   ok &= TestInteractive();
   ok &= TestMissingInputs();
