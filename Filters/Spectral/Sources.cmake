@@ -18,6 +18,7 @@ set(spectral_core_sources
   Solver/BlockProducts.cxx
   Solver/Memory.cxx
   Filtering/Transfer.cxx
+  Filtering/Descriptors.cxx
   )
 set(spectral_core_headers
   Basis.h
@@ -35,4 +36,5 @@ set(spectral_core_headers
   Solver/BlockProducts.h
   Solver/Memory.h
   Filtering/Transfer.h
+  Filtering/Descriptors.h
   )

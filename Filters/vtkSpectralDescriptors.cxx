@@ -1,0 +1,559 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSpectralDescriptors.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkManifoldHarmonicTransform.h"
+#include "vtkManifoldHarmonicsArrays.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkTable.h"
+
+#include "Spectral/Filtering/Descriptors.h"
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkSpectralDescriptors);
+
+namespace
+{
+/// A point-data array to add: its name, its values (n by c) and its component labels.
+struct Descriptor
+{
+  const char* Name;
+  spectral::RowMatrix Values;
+  std::vector<std::string> Components;
+};
+
+/// The triangles of the polygons (as fans) and strips, for the mean edge length behind the
+/// Nyquist frequency that tells the zero eigenvalues (the same triangles vtkSpectralFilter
+/// measures; see the report on folding both into vtkManifoldHarmonicsArrays).
+spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input)
+{
+  spectral::TriangleMesh mesh;
+  mesh.Vertices = vtkManifoldHarmonicsArrays::Signal(input->GetPoints()->GetData()).View();
+  std::vector<int> corners;
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
+  {
+    polygons->GetCurrentCell(size, ids);
+    for (vtkIdType c = 1; c + 1 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    strips->GetCurrentCell(size, ids);
+    for (vtkIdType c = 0; c + 2 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
+    }
+  }
+  mesh.Faces = Eigen::Map<const spectral::Triangles>(
+    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
+  return mesh;
+}
+
+/// The eigenvalues with the module's rule for zero ones (IsNonZeroEigenvalue).
+spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, vtkPolyData* input)
+{
+  const spectral::TriangleMesh mesh = SurfaceTriangles(input);
+  const double nyquist = mesh.Faces.rows() > 0 ? spectral::NyquistFrequency(mesh) : 0.0;
+  spectral::Spectrum spectrum;
+  spectrum.Lambda = lambda;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    spectrum.NonZero.push_back(vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(lambda[k], nyquist));
+  }
+  return spectrum;
+}
+
+/// f(view) on the harmonics in place, as doubles or floats (the basis' own precision).
+template<typename Function>
+auto OnBasis(const vtkManifoldHarmonicsArrays::Basis& basis, const Function& f)
+{
+  if (basis.Floats)
+  {
+    return f(spectral::FloatBasisView(basis.Floats, basis.NumberOfPoints, basis.NumberOfHarmonics));
+  }
+  return f(spectral::BasisView(basis.Doubles, basis.NumberOfPoints, basis.NumberOfHarmonics));
+}
+
+/// Component labels "<prefix><value>" for a list of times or energies.
+std::vector<std::string> Labels(const char* prefix, const spectral::Vector& values)
+{
+  std::vector<std::string> labels;
+  for (Eigen::Index j = 0; j < values.size(); ++j)
+  {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%s%.4g", prefix, values[j]);
+    labels.emplace_back(text);
+  }
+  return labels;
+}
+
+/// The array of a descriptor, NaN at the points of zero mass (no harmonics there).
+vtkSmartPointer<vtkDoubleArray> ToArray(Descriptor& descriptor, const spectral::Vector& mass)
+{
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+  {
+    if (!(mass[i] > 0.0))
+    {
+      descriptor.Values.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  auto array = vtkManifoldHarmonicsArrays::NewDoubleArray(descriptor.Values, descriptor.Name);
+  for (std::size_t c = 0; c < descriptor.Components.size(); ++c)
+  {
+    array->SetComponentName(static_cast<vtkIdType>(c), descriptor.Components[c].c_str());
+  }
+  return array;
+}
+
+/// Warns when the harmonics miss more than 1% of the heat trace at time t (Weyl estimate).
+void WarnTruncation(vtkSpectralDescriptors* self,
+  const spectral::Spectrum& spectrum,
+  double area,
+  double time,
+  vtkIdType points,
+  const char* what)
+{
+  const int needed = spectral::HeatKernelHarmonicsNeeded(spectrum, area, time);
+  if (needed > spectrum.Lambda.size())
+  {
+    std::ostringstream count;
+    count << "about " << needed;
+    vtkWarningWithObjectMacro(self,
+      << what << " at time " << time << " needs "
+      << (needed >= points ? std::string("every harmonic") : count.str())
+      << " for a truncation error below 1% of the heat trace (Weyl estimate); the basis has "
+      << spectrum.Lambda.size() << ". Compute more harmonics or use larger times.");
+  }
+}
+
+/// The source point of the distance, or -1 after an error.
+vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPolyData* input, const spectral::Vector& mass)
+{
+  vtkIdType source = self->GetSourcePoint();
+  if (self->GetUseSourceLocation())
+  {
+    source = input->FindPoint(self->GetSourceLocation());
+  }
+  else if (source < 0 || source >= input->GetNumberOfPoints())
+  {
+    vtkErrorWithObjectMacro(self,
+      << "SourcePoint " << source << " is outside the point ids [0, " << input->GetNumberOfPoints()
+      << ").");
+    return -1;
+  }
+  if (source < 0 || !(mass[source] > 0.0))
+  {
+    vtkErrorWithObjectMacro(
+      self, << "Source point " << source << " is used by no triangle: it has no harmonics.");
+    return -1;
+  }
+  return source;
+}
+
+/// The parameters that the setters cannot refuse: negative times. \return An error or "".
+std::string CheckTimes(vtkSpectralDescriptors* self)
+{
+  std::ostringstream problem;
+  for (int j = 0; j < self->GetNumberOfHeatKernelTimes(); ++j)
+  {
+    if (!(self->GetHeatKernelTime(j) >= 0.0 && std::isfinite(self->GetHeatKernelTime(j))))
+    {
+      problem << "HeatKernelTimes[" << j << "] = " << self->GetHeatKernelTime(j)
+              << " is not a finite time >= 0.";
+      return problem.str();
+    }
+  }
+  if (!(self->GetDiffusionTime() >= 0.0 && std::isfinite(self->GetDiffusionTime())))
+  {
+    problem << "DiffusionTime " << self->GetDiffusionTime() << " is not a finite time >= 0.";
+  }
+  return problem.str();
+}
+
+/// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda A.
+void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
+{
+  const spectral::Vector scaled = spectral::ShapeDNA(lambda, area, 2);
+  vtkNew<vtkIdTypeArray> index;
+  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
+  index->SetNumberOfTuples(lambda.size());
+  for (vtkIdType k = 0; k < lambda.size(); ++k)
+  {
+    index->SetValue(k, k);
+  }
+  table->AddColumn(index);
+  table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
+    lambda, vtkManifoldHarmonicTransform::EigenvalueColumnName()));
+  table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
+    scaled, vtkSpectralDescriptors::ScaledEigenvalueColumnName()));
+}
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+vtkSpectralDescriptors::vtkSpectralDescriptors()
+  : HeatKernelTimes(vtkDoubleArray::New())
+{
+  this->ComputeHeatKernelSignature = true;
+  this->ScaleNormalizeHeatKernel = false;
+  this->ComputeWaveKernelSignature = false;
+  this->NumberOfEnergies = spectral::DefaultNumberOfEnergies;
+  this->WaveKernelSigma = 0.0;
+  this->ComputeGlobalPointSignature = false;
+  this->NumberOfGPSComponents = 10;
+  this->ComputeSpectralDistance = false;
+  this->DistanceKind = BIHARMONIC;
+  this->DiffusionTime = 0.0;
+  this->SourcePoint = 0;
+  this->UseSourceLocation = false;
+  this->SourceLocation[0] = this->SourceLocation[1] = this->SourceLocation[2] = 0.0;
+  this->SetNumberOfOutputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+vtkSpectralDescriptors::~vtkSpectralDescriptors()
+{
+  this->HeatKernelTimes->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralDescriptors::SetNumberOfHeatKernelTimes(int count)
+{
+  count = std::max(count, 0);
+  const vtkIdType old = this->HeatKernelTimes->GetNumberOfTuples();
+  if (count == old)
+  {
+    return;
+  }
+  this->HeatKernelTimes->Resize(count);
+  this->HeatKernelTimes->SetNumberOfTuples(count);
+  for (vtkIdType j = old; j < count; ++j)
+  {
+    this->HeatKernelTimes->SetValue(j, 0.0);
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralDescriptors::GetNumberOfHeatKernelTimes()
+{
+  return static_cast<int>(this->HeatKernelTimes->GetNumberOfTuples());
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralDescriptors::SetHeatKernelTime(int index, double time)
+{
+  if (index < 0 || index >= this->GetNumberOfHeatKernelTimes())
+  {
+    vtkErrorMacro(<< "Heat kernel time " << index << " out of range [0, "
+                  << this->GetNumberOfHeatKernelTimes() << ").");
+    return;
+  }
+  if (this->HeatKernelTimes->GetValue(index) != time)
+  {
+    this->HeatKernelTimes->SetValue(index, time);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkSpectralDescriptors::GetHeatKernelTime(int index)
+{
+  if (index < 0 || index >= this->GetNumberOfHeatKernelTimes())
+  {
+    vtkErrorMacro(<< "Heat kernel time " << index << " out of range [0, "
+                  << this->GetNumberOfHeatKernelTimes() << ").");
+    return 0.0;
+  }
+  return this->HeatKernelTimes->GetValue(index);
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralDescriptors::AddHeatKernelTime(double time)
+{
+  this->HeatKernelTimes->InsertNextValue(time);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
+{
+  if (this->HeatKernelTimes->GetNumberOfTuples() > 0)
+  {
+    this->HeatKernelTimes->SetNumberOfTuples(0);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkSpectralDescriptors::GetShapeDNAOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::HeatKernelSignatureArrayName()
+{
+  return "HeatKernelSignature";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::WaveKernelSignatureArrayName()
+{
+  return "WaveKernelSignature";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::GlobalPointSignatureArrayName()
+{
+  return "GlobalPointSignature";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::SpectralDistanceArrayName()
+{
+  return "SpectralDistance";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::HeatKernelTimesArrayName()
+{
+  return "HeatKernelSignatureTimes";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::WaveKernelEnergiesArrayName()
+{
+  return "WaveKernelSignatureEnergies";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSpectralDescriptors::ScaledEigenvalueColumnName()
+{
+  return "ScaledEigenvalue";
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralDescriptors::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* shapeDNA = vtkTable::GetData(outputVector, 1);
+  this->UsedSourcePoint = -1;
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro(<< "No data to describe!");
+    output->ShallowCopy(input);
+    return 1;
+  }
+  vtkManifoldHarmonicsArrays::Basis basis;
+  std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  problem = problem.empty() ? CheckTimes(this) : problem;
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  const spectral::Vector mass = basis.MassVector();
+  const double area = mass.sum();
+  vtkIdType source = -1;
+  if (this->ComputeSpectralDistance && (source = FindSource(this, input, mass)) < 0)
+  {
+    return 0;
+  }
+  vtkDebugMacro(<< "HKS " << this->ComputeHeatKernelSignature << " ("
+                << this->GetNumberOfHeatKernelTimes() << " times), WKS "
+                << this->ComputeWaveKernelSignature << ", GPS " << this->ComputeGlobalPointSignature
+                << ", distance " << this->ComputeSpectralDistance << " kind " << this->DistanceKind
+                << " from " << source);
+  this->SetProgressText("Spectral descriptors");
+  std::vector<Descriptor> descriptors;
+  vtkNew<vtkFieldData> parameters;
+  try
+  {
+    const spectral::Spectrum spectrum = ToSpectrum(basis.EigenvalueVector(), input);
+    if (this->ComputeHeatKernelSignature)
+    {
+      const spectral::Vector times = this->GetNumberOfHeatKernelTimes() > 0
+        ? spectral::Vector(vtkManifoldHarmonicsArrays::Signal(this->HeatKernelTimes).View().col(0))
+        : spectral::DefaultHeatKernelTimes(spectrum);
+      for (Eigen::Index j = 0; j < times.size(); ++j)
+      {
+        WarnTruncation(
+          this, spectrum, area, times[j], input->GetNumberOfPoints(), "The heat kernel signature");
+      }
+      descriptors.push_back({ HeatKernelSignatureArrayName(),
+        OnBasis(basis,
+          [&spectrum, &times, this](const auto& H) {
+            return spectral::HeatKernelSignature(
+              H, spectrum, times, this->ScaleNormalizeHeatKernel);
+          }),
+        Labels("t=", times) });
+      parameters->AddArray(
+        vtkManifoldHarmonicsArrays::NewDoubleArray(times, HeatKernelTimesArrayName()));
+    }
+    this->UpdateProgress(0.25);
+    if (this->GetAbortExecute())
+    {
+      return 1;
+    }
+    if (this->ComputeWaveKernelSignature)
+    {
+      const spectral::WaveKernelEnergies energies = spectral::DefaultWaveKernelEnergies(
+        spectrum, this->NumberOfEnergies, this->WaveKernelSigma);
+      descriptors.push_back({ WaveKernelSignatureArrayName(),
+        OnBasis(basis,
+          [&spectrum, &energies](const auto& H)
+          { return spectral::WaveKernelSignature(H, spectrum, energies); }),
+        Labels("e=", energies.Energies) });
+      parameters->AddArray(vtkManifoldHarmonicsArrays::NewDoubleArray(
+        energies.Energies, WaveKernelEnergiesArrayName()));
+    }
+    this->UpdateProgress(0.5);
+    if (this->GetAbortExecute())
+    {
+      return 1;
+    }
+    if (this->ComputeGlobalPointSignature)
+    {
+      const int available = static_cast<int>(spectral::NonZeroIndices(spectrum).size());
+      int components = this->NumberOfGPSComponents;
+      if (components > available)
+      {
+        vtkWarningMacro(<< "NumberOfGPSComponents " << components << " clamped to " << available
+                        << ", the non-constant harmonics of the basis.");
+        components = available;
+      }
+      descriptors.push_back({ GlobalPointSignatureArrayName(),
+        OnBasis(basis,
+          [&spectrum, components](const auto& H)
+          { return spectral::GlobalPointSignature(H, spectrum, components); }),
+        {} });
+    }
+    this->UpdateProgress(0.75);
+    if (this->GetAbortExecute())
+    {
+      return 1;
+    }
+    if (this->ComputeSpectralDistance)
+    {
+      const auto kind = static_cast<spectral::DistanceKind>(this->DistanceKind);
+      double time = this->DiffusionTime;
+      if (kind == spectral::DistanceKind::Diffusion)
+      {
+        time = time > 0.0 ? time : spectral::DefaultHeatKernelTimes(spectrum, 1)[0];
+        WarnTruncation(this,
+          spectrum,
+          area,
+          2.0 * time,
+          input->GetNumberOfPoints(),
+          "The diffusion distance (a heat kernel at twice its time)");
+      }
+      const spectral::Vector weights = spectral::DistanceWeights(spectrum, kind, time);
+      descriptors.push_back({ SpectralDistanceArrayName(),
+        OnBasis(basis,
+          [&weights, source](const auto& H)
+          { return spectral::RowMatrix(spectral::SpectralDistance(H, weights, source)); }),
+        {} });
+      this->UsedSourcePoint = source;
+    }
+    FillShapeDNA(spectrum.Lambda, area, shapeDNA);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Spectral descriptors failed: " << e.what());
+    shapeDNA->Initialize();
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  if (this->GetAbortExecute())
+  {
+    shapeDNA->Initialize();
+    return 1;
+  }
+  output->ShallowCopy(input);
+  for (Descriptor& descriptor : descriptors)
+  {
+    output->GetPointData()->AddArray(ToArray(descriptor, mass));
+  }
+  for (int a = 0; a < parameters->GetNumberOfArrays(); ++a)
+  {
+    output->GetFieldData()->AddArray(parameters->GetAbstractArray(a));
+  }
+  if (!descriptors.empty())
+  {
+    output->GetPointData()->SetActiveScalars(descriptors.front().Name);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSpectralDescriptors::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const auto onOff = [](bool value) { return value ? "On" : "Off"; };
+  os << indent << "ComputeHeatKernelSignature: " << onOff(this->ComputeHeatKernelSignature)
+     << " (default On)\n";
+  os << indent << "HeatKernelTimes:";
+  for (vtkIdType j = 0; j < this->HeatKernelTimes->GetNumberOfTuples(); ++j)
+  {
+    os << " " << this->HeatKernelTimes->GetValue(j);
+  }
+  os << " (default empty: 16 times over [4 ln 10 / lambda_max, 4 ln 10 / lambda_1])\n";
+  os << indent << "ScaleNormalizeHeatKernel: " << onOff(this->ScaleNormalizeHeatKernel)
+     << " (default Off)\n";
+  os << indent << "ComputeWaveKernelSignature: " << onOff(this->ComputeWaveKernelSignature)
+     << " (default Off)\n";
+  os << indent << "NumberOfEnergies: " << this->NumberOfEnergies << " (default 100)\n";
+  os << indent << "WaveKernelSigma: " << this->WaveKernelSigma << " (default 0: 7 energy steps)\n";
+  os << indent << "ComputeGlobalPointSignature: " << onOff(this->ComputeGlobalPointSignature)
+     << " (default Off)\n";
+  os << indent << "NumberOfGPSComponents: " << this->NumberOfGPSComponents << " (default 10)\n";
+  os << indent << "ComputeSpectralDistance: " << onOff(this->ComputeSpectralDistance)
+     << " (default Off)\n";
+  os << indent << "DistanceKind: " << this->DistanceKind << " (default 2, BIHARMONIC)\n";
+  os << indent << "DiffusionTime: " << this->DiffusionTime
+     << " (default 0: 4 ln 10 / sqrt(lambda_1 lambda_max))\n";
+  os << indent << "SourcePoint: " << this->SourcePoint << " (default 0)\n";
+  os << indent << "UseSourceLocation: " << onOff(this->UseSourceLocation) << " (default Off)\n";
+  os << indent << "SourceLocation: (" << this->SourceLocation[0] << ", " << this->SourceLocation[1]
+     << ", " << this->SourceLocation[2] << ") (default (0, 0, 0))\n";
+}
