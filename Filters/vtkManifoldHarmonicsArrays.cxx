@@ -3,6 +3,8 @@
 #include "vtkManifoldHarmonicsArrays.h"
 
 #include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -10,6 +12,7 @@
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
@@ -57,13 +60,12 @@ struct WriteValues
 };
 
 /// f(view) with a row-major view of the basis memory in its own precision (no copy).
-template <typename Function>
+template<typename Function>
 spectral::RowMatrix InPlace(const vtkManifoldHarmonicsArrays::Basis& basis, const Function& f)
 {
   if (basis.Floats)
   {
-    return f(
-      spectral::FloatBasisView(basis.Floats, basis.NumberOfPoints, basis.NumberOfHarmonics));
+    return f(spectral::FloatBasisView(basis.Floats, basis.NumberOfPoints, basis.NumberOfHarmonics));
   }
   return f(spectral::BasisView(basis.Doubles, basis.NumberOfPoints, basis.NumberOfHarmonics));
 }
@@ -89,8 +91,9 @@ std::string Mismatch(const char* name, vtkIdType found, const char* what, vtkIdT
 namespace vtkManifoldHarmonicsArrays
 {
 //------------------------------------------------------------------------------
-spectral::RowMatrix Basis::ForwardTransform(
-  const spectral::Vector& mass, const spectral::ConstRowView& X, int threads) const
+spectral::RowMatrix Basis::ForwardTransform(const spectral::Vector& mass,
+  const spectral::ConstRowView& X,
+  int threads) const
 {
   return InPlace(*this,
     [&mass, &X, threads](const auto& H)
@@ -304,4 +307,37 @@ std::string MissingBasisAdvice(vtkPolyData* input)
   }
   return "compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
 }
+//------------------------------------------------------------------------------
+spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input)
+{
+  spectral::TriangleMesh mesh;
+  mesh.Vertices = Signal(input->GetPoints()->GetData()).View();
+  std::vector<int> corners;
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
+  {
+    polygons->GetCurrentCell(size, ids);
+    for (vtkIdType c = 1; c + 1 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    strips->GetCurrentCell(size, ids);
+    for (vtkIdType c = 0; c + 2 < size; ++c)
+    {
+      corners.insert(corners.end(),
+        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
+    }
+  }
+  mesh.Faces = Eigen::Map<const spectral::Triangles>(
+    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
+  return mesh;
+}
+
 } // namespace vtkManifoldHarmonicsArrays

@@ -128,6 +128,12 @@ void FillSpectrum(vtkTable* table,
  * basis) or which filter to run upstream.
  */
 std::string MissingBasisAdvice(vtkPolyData* input);
+/**
+ * The triangles of the polygons (as fans) and strips of a mesh, with all its points: what the
+ * mean edge length behind the Nyquist frequency is measured on (vtkSpectralFilter,
+ * vtkSpectralDescriptors).
+ */
+spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -8,8 +8,8 @@
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
-#include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsNames.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
+#include "Spectral/Common/Eigenvalues.h"
 #include "Spectral/Filtering/Descriptors.h"
 
 #include <cmath>
@@ -40,51 +41,16 @@ struct Descriptor
   std::vector<std::string> Components;
 };
 
-/// The triangles of the polygons (as fans) and strips, for the mean edge length behind the
-/// Nyquist frequency that tells the zero eigenvalues (the same triangles vtkSpectralFilter
-/// measures; see the report on folding both into vtkManifoldHarmonicsArrays).
-spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input)
-{
-  spectral::TriangleMesh mesh;
-  mesh.Vertices = vtkManifoldHarmonicsArrays::Signal(input->GetPoints()->GetData()).View();
-  std::vector<int> corners;
-  vtkIdType size = 0;
-  const vtkIdType* ids = nullptr;
-  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
-  {
-    polygons->GetCurrentCell(size, ids);
-    for (vtkIdType c = 1; c + 1 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
-    }
-  }
-  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-  {
-    strips->GetCurrentCell(size, ids);
-    for (vtkIdType c = 0; c + 2 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
-    }
-  }
-  mesh.Faces = Eigen::Map<const spectral::Triangles>(
-    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
-  return mesh;
-}
-
-/// The eigenvalues with the module's rule for zero ones (IsNonZeroEigenvalue).
+/// The eigenvalues with the module's rule for zero ones (Spectral/Common/Eigenvalues.h).
 spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, vtkPolyData* input)
 {
-  const spectral::TriangleMesh mesh = SurfaceTriangles(input);
+  const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::SurfaceTriangles(input);
   const double nyquist = mesh.Faces.rows() > 0 ? spectral::NyquistFrequency(mesh) : 0.0;
   spectral::Spectrum spectrum;
   spectrum.Lambda = lambda;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
   {
-    spectrum.NonZero.push_back(vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue(lambda[k], nyquist));
+    spectrum.NonZero.push_back(!spectral::IsZeroEigenvalue(lambda[k], nyquist * nyquist));
   }
   return spectrum;
 }
@@ -201,7 +167,7 @@ void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
 {
   const spectral::Vector scaled = spectral::ShapeDNA(lambda, area, 2);
   vtkNew<vtkIdTypeArray> index;
-  index->SetName(vtkManifoldHarmonicTransform::IndexColumnName());
+  index->SetName(vtkManifoldHarmonicsNames::IndexColumn);
   index->SetNumberOfTuples(lambda.size());
   for (vtkIdType k = 0; k < lambda.size(); ++k)
   {
@@ -209,7 +175,7 @@ void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
   }
   table->AddColumn(index);
   table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
-    lambda, vtkManifoldHarmonicTransform::EigenvalueColumnName()));
+    lambda, vtkManifoldHarmonicsNames::EigenvalueColumn));
   table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
     scaled, vtkSpectralDescriptors::ScaledEigenvalueColumnName()));
 }

@@ -44,39 +44,6 @@ struct FilterJob
   bool IsNormals;
 };
 
-/// The triangles of the polygons (as fans) and strips of a mesh, for its Nyquist frequency.
-spectral::TriangleMesh ToTriangleMesh(vtkPolyData* input)
-{
-  spectral::TriangleMesh mesh;
-  mesh.Vertices = vtkManifoldHarmonicsArrays::Signal(input->GetPoints()->GetData()).View();
-  std::vector<int> corners;
-  vtkIdType size = 0;
-  const vtkIdType* ids = nullptr;
-  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
-  {
-    polygons->GetCurrentCell(size, ids);
-    for (vtkIdType c = 1; c + 1 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
-    }
-  }
-  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-  {
-    strips->GetCurrentCell(size, ids);
-    for (vtkIdType c = 0; c + 2 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
-    }
-  }
-  mesh.Faces = Eigen::Map<const spectral::Triangles>(
-    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
-  return mesh;
-}
-
 /// The signals to filter: every <Signal>_Coefficients field array whose signal is on the input.
 /// \return An error message if coefficients disagree with the basis or their signal.
 std::string FindJobs(vtkSpectralFilter* self,
@@ -176,7 +143,7 @@ std::vector<double> EdgeSums(vtkPolyData* input)
   std::vector<double> sums = { 0.0, 0.0 };
   if (input->GetNumberOfPoints() > 0)
   {
-    const spectral::TriangleMesh mesh = ToTriangleMesh(input);
+    const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::SurfaceTriangles(input);
     sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
     sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
   }
