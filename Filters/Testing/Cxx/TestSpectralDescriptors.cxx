@@ -364,28 +364,11 @@ bool TestWarnings()
 
 //------------------------------------------------------------------------------
 // Asks the filter to abort at its first progress event: both outputs are then empty.
-class AbortAtFirstProgress : public vtkCommand
-{
-public:
-  vtkTypeMacro(AbortAtFirstProgress, vtkCommand);
-  static AbortAtFirstProgress* New() { return new AbortAtFirstProgress; }
-  void Execute(vtkObject* caller, unsigned long, void* callData) override
-  {
-    const double progress = *static_cast<double*>(callData);
-    if (progress > 0.0 && progress < 1.0)
-    {
-      ++this->Count;
-      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    }
-  }
-  int Count = 0;
-};
-
 bool TestAbort()
 {
   vtkSmartPointer<vtkPolyData> input = SphereBasis(1.0, 10);
   vtkNew<vtkSpectralDescriptors> filter;
-  vtkNew<AbortAtFirstProgress> abort;
+  vtkNew<ManifoldHarmonicsTest::AbortAtFirstProgress> abort;
   filter->AddObserver(vtkCommand::ProgressEvent, abort);
   filter->ComputeWaveKernelSignatureOn();
   filter->SetInputData(input);
