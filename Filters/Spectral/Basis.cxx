@@ -174,6 +174,43 @@ void ReportComponents(int components, int m, const Monitor& monitor, BasisResult
 }
 
 //------------------------------------------------------------------------------
+// Leaves out the rows of the points that no harmonic represents (components beyond the m
+// smallest eigenpairs: every component's constant harmonic comes first, so a component is
+// represented by all of its rows or by none), with a warning: they get zero harmonics and mass,
+// as points no triangle uses, so that no filter downstream moves them.
+void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
+{
+  DenseMatrix& H = result.Pairs.Eigenvectors;
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < H.rows(); ++i)
+  {
+    if ((H.row(i).array() != 0.0).any())
+    {
+      keep.push_back(i);
+    }
+  }
+  const Eigen::Index left = H.rows() - static_cast<Eigen::Index>(keep.size());
+  if (left == 0)
+  {
+    return;
+  }
+  H = DenseMatrix(H(keep, Eigen::all));
+  result.LumpedMass = Vector(result.LumpedMass(keep));
+  std::vector<int> ids;
+  for (Eigen::Index i : keep)
+  {
+    ids.push_back(result.InputPointIds[static_cast<std::size_t>(i)]);
+  }
+  result.InputPointIds = std::move(ids);
+  Report(
+    { std::to_string(left) + " points of components that none of the " + std::to_string(H.cols()) +
+      " harmonics represents are left out: their harmonics and mass are 0, and the "
+      "filters pass them through unchanged." },
+    monitor,
+    result);
+}
+
+//------------------------------------------------------------------------------
 // The power of two nearest the diameter of the points (1 for a single point): dividing the
 // coordinates by it is exact, and makes the solve independent of the mesh's units.
 double UnitScale(const Points& points)
@@ -258,6 +295,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   result.Pairs.Eigenvectors /= s;
   result.LumpedMass = ops.LumpedMass * (s * s);
   result.InputPointIds = std::move(ops.InputPointIds);
+  LeaveOutUnrepresented(result, monitor);
   return result;
 }
 } // namespace spectral

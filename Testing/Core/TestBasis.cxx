@@ -361,6 +361,38 @@ void FewerHarmonicsThanComponents()
   const BasisResult basis = ComputeBasis(SphereWithIslands(10), options, monitor);
   Check(warnedBeforeSolve, "10 harmonics for 11 components: said before the solve");
   CheckBelow(basis.Pairs.Eigenvalues.cwiseAbs().maxCoeff(), 1e-8, "all ten eigenvalues are 0");
+  // The smallest component (a single triangle; the last of the smallest size) has no
+  // harmonic: its points are left out.
+  const TriangleMesh mesh = SphereWithIslands(10);
+  const PreparedMesh prepared = PrepareMesh(mesh);
+  const ComponentLabels labels = LabelComponents(prepared.Mesh);
+  std::vector<int> size(static_cast<std::size_t>(labels.Count), 0);
+  for (int label : labels.Label)
+  {
+    ++size[static_cast<std::size_t>(label)];
+  }
+  int smallest = 0;
+  for (int c = 0; c < labels.Count; ++c)
+  {
+    smallest =
+      size[static_cast<std::size_t>(c)] <= size[static_cast<std::size_t>(smallest)] ? c : smallest;
+  }
+  std::vector<int> represented;
+  for (std::size_t i = 0; i < labels.Label.size(); ++i)
+  {
+    if (labels.Label[i] != smallest)
+    {
+      represented.push_back(prepared.InputPointIds[i]);
+    }
+  }
+  Check(basis.InputPointIds == represented,
+    "the points of the component without a harmonic have no row (" +
+      std::to_string(prepared.InputPointIds.size() - represented.size()) + " points)");
+  Check(basis.Pairs.Eigenvectors.rows() == static_cast<Eigen::Index>(represented.size()) &&
+      basis.LumpedMass.size() == static_cast<Eigen::Index>(represented.size()),
+    "harmonics and mass have their rows only");
+  Check(seen.back().find("none of the 10 harmonics represents are left out") != std::string::npos,
+    "and a warning says so: " + seen.back());
 }
 
 //------------------------------------------------------------------------------

@@ -94,20 +94,28 @@ void AddStatistics(EigenResult& total, const EigenResult& part)
   total.Seconds.Verification += part.Seconds.Verification;
 }
 
-/// A pair of the union: eigenvalue, component, index within the component's pairs.
-using Member = std::tuple<double, int, int>;
+/**
+ * A pair of the union, in the order of its sort key: the eigenvalue (exactly 0 for the first
+ * pair of each component, its constant harmonic, whatever round-off the solver left), minus the
+ * size of the component for those (the largest components first), the component and the index
+ * within its pairs.
+ */
+using Member = std::tuple<double, int, int, int>;
 
 //------------------------------------------------------------------------------
-// The m smallest pairs of the union, ascending; ties in component order.
+// The m smallest pairs of the union, ascending; the zero eigenvalues of the largest components
+// first, other ties in component order.
 std::vector<Member> Smallest(const std::vector<Block>& blocks, int m)
 {
   std::vector<Member> all;
   for (std::size_t c = 0; c < blocks.size(); ++c)
   {
     const Vector& lambda = blocks[c].Pairs.Eigenvalues;
+    const int size = static_cast<int>(blocks[c].Rows.size());
     for (Eigen::Index k = 0; k < lambda.size(); ++k)
     {
-      all.emplace_back(lambda[k], static_cast<int>(c), static_cast<int>(k));
+      all.emplace_back(
+        k == 0 ? 0.0 : lambda[k], k == 0 ? -size : 0, static_cast<int>(c), static_cast<int>(k));
     }
   }
   std::sort(all.begin(), all.end());
@@ -181,9 +189,10 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   result.Eigenvectors = DenseMatrix::Zero(L.rows(), result.Eigenvalues.size());
   for (std::size_t j = 0; j < smallest.size(); ++j)
   {
-    const auto& [lambda, c, k] = smallest[j];
+    const int c = std::get<2>(smallest[j]);
+    const int k = std::get<3>(smallest[j]);
     const Block& block = blocks[static_cast<std::size_t>(c)];
-    result.Eigenvalues[static_cast<Eigen::Index>(j)] = lambda;
+    result.Eigenvalues[static_cast<Eigen::Index>(j)] = block.Pairs.Eigenvalues[k];
     for (std::size_t r = 0; r < block.Rows.size(); ++r)
     {
       result.Eigenvectors(block.Rows[r], static_cast<Eigen::Index>(j)) =

@@ -47,8 +47,10 @@ using PairSolver = std::function<
  * \param m Number of pairs, 1 <= m <= n.
  * \param solve The solver of one component.
  * \param monitor Progress in [0, 1] over all components, and cancellation.
- * \return Eigenvalues ascending (ties in component order), eigenvectors n by m, each zero
- *         outside its component; the statistics summed (MaxResidual: the largest).
+ * \return Eigenvalues ascending, eigenvectors n by m, each zero outside its component; the
+ *         statistics summed (MaxResidual: the largest). The zero eigenvalues (the first of each
+ *         component) come first, the largest components' first, so that when m is below the
+ *         number of components the basis describes the largest ones.
  */
 EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const SparseMatrix& M,

@@ -738,6 +738,64 @@ bool TestUnusedPoint()
 }
 
 //------------------------------------------------------------------------------
+// Two spheres apart and a single harmonic: it is the constant of the larger sphere, so the
+// smaller sphere has no harmonic. Its points must not move (re-injection would scale them
+// toward the origin), and the basis says so.
+bool TestUnrepresentedComponent()
+{
+  vtkNew<vtkSphereSource> large;
+  large->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  large->SetThetaResolution(24);
+  large->SetPhiResolution(24);
+  large->Update();
+  vtkNew<vtkSphereSource> small;
+  small->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  small->SetCenter(4.0, 1.0, 2.0);
+  small->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(large->GetOutput());
+  mesh->GetPointData()->Initialize();
+  const vtkIdType offset = mesh->GetNumberOfPoints();
+  vtkPolyData* second = small->GetOutput();
+  for (vtkIdType i = 0; i < second->GetNumberOfPoints(); ++i)
+  {
+    mesh->GetPoints()->InsertNextPoint(second->GetPoint(i));
+  }
+  const vtkIdType numCells = second->GetNumberOfCells();
+  for (vtkIdType c = 0; c < numCells; ++c)
+  {
+    vtkNew<vtkIdList> ids;
+    second->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      ids->SetId(k, ids->GetId(k) + offset);
+    }
+    mesh->GetPolys()->InsertNextCell(ids);
+  }
+  Pipeline pipeline(mesh, 1, {});
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  pipeline.Basis->AddObserver(vtkCommand::WarningEvent, warnings);
+  pipeline.Filter->SetCutoff(0.5);
+  vtkPolyData* output = pipeline.Run();
+  double moved = 0.0;
+  for (vtkIdType i = offset; output && i < output->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    output->GetPoint(i, a);
+    mesh->GetPoint(i, b);
+    moved = std::max(moved, std::sqrt(vtkMath::Distance2BetweenPoints(a, b)));
+  }
+  std::cout << "Largest move of the sphere without a harmonic: " << moved << std::endl;
+  bool ok = Check(output && output->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
+      moved == 0.0,
+    "points of a component no harmonic represents moved");
+  ok &= Check(warnings->GetWarningMessage().find("none of the 1 harmonics represents") !=
+      std::string::npos,
+    "no warning about the component without a harmonic");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // The filter keeps the edge lengths behind the Nyquist frequency between executions: a new
 // input geometry (here the sphere scaled by 2, which halves the Nyquist frequency and so
 // changes the re-injected part) must give what a new filter gives.
@@ -972,6 +1030,7 @@ int TestSpectralFilter(int, char*[])
   ok &= TestColorsAndNormals();
   ok &= TestHeatDiffusion();
   ok &= TestChaining();
+  ok &= TestUnrepresentedComponent();
   ok &= TestUnusedPoint();
   ok &= TestNyquistFollowsInput();
   ok &= TestNyquistSameMTime();
