@@ -5,8 +5,8 @@
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
-#include "vtkDataSetAttributes.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -14,8 +14,8 @@
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsNames.h"
-#include "vtkManifoldHarmonicsParameters.h"
 #include "vtkManifoldHarmonicsParallel.h"
+#include "vtkManifoldHarmonicsParameters.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -40,8 +40,8 @@
 vtkStandardNewMacro(vtkManifoldHarmonicBasis);
 
 // The wrapped constant repeats the core's default for Python and the XML: they must agree.
-static_assert(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS ==
-    spectral::DefaultNumberOfHarmonics,
+static_assert(
+  vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS == spectral::DefaultNumberOfHarmonics,
   "the default number of harmonics has its home in Spectral/Common/Defaults.h");
 
 namespace
@@ -69,7 +69,7 @@ struct CopyPointsWorker
 //------------------------------------------------------------------------------
 // Writes row r of an #used by m column-major matrix into row Ids[r] of a row-major buffer with
 // m values per row (the layout of a vtkDoubleArray or vtkFloatArray with m components).
-template <typename ValueT>
+template<typename ValueT>
 struct ScatterRows
 {
   const spectral::DenseMatrix& Values;
@@ -93,7 +93,7 @@ struct ScatterRows
 //------------------------------------------------------------------------------
 // An n by m point data array (vtkDoubleArray or vtkFloatArray), zero on the points that Ids
 // does not reach.
-template <typename ArrayT>
+template<typename ArrayT>
 vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
   const spectral::DenseMatrix& values,
   const std::vector<int>& ids,
@@ -262,8 +262,9 @@ std::string Bytes(std::uint64_t bytes)
 //------------------------------------------------------------------------------
 // The error message of a computation that does not fit in memory: what is needed, what is
 // available, what to change.
-std::string MemoryProblem(
-  vtkManifoldHarmonicBasis* self, vtkIdType numPts, const spectral::InsufficientMemory& e)
+std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
+  vtkIdType numPts,
+  const spectral::InsufficientMemory& e)
 {
   const int m = e.Harmonics;
   const bool floats = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT;
@@ -301,6 +302,7 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.Solver.BandSize = self->GetBandSize();
   options.Solver.Tolerance = self->GetTolerance();
   options.Solver.MaxIterations = self->GetMaxIterations();
+  options.MinimumComponentSize = self->GetMinimumComponentSize();
   options.BytesPerValue = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT ? 4 : 8;
   // A limit below one byte still limits (0 would mean "ask the system").
   options.MemoryLimit = self->GetMemoryLimit() > 0.0
@@ -333,6 +335,8 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , MaxIterations(1000)
   , BasisPrecision(DOUBLE)
   , MemoryLimit(0.0)
+  , MinimumComponentSize(0)
+  , NumberOfThreads(0)
 {
 }
 
@@ -459,8 +463,8 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
       spectral::ComputeBasis(::ToTriangleMesh(surface), ::CoreOptions(this), ::FilterMonitor(this));
     this->SetProgressText("Write");
     output->ShallowCopy(input);
-    ::AddBasisArrays(output, basis.Pairs, basis.InputPointIds, basis.LumpedMass,
-      this->BasisPrecision == FLOAT);
+    ::AddBasisArrays(
+      output, basis.Pairs, basis.InputPointIds, basis.LumpedMass, this->BasisPrecision == FLOAT);
     this->UpdateProgress(1.0);
     return 1;
   }
@@ -518,4 +522,7 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
      << " (default Double)\n";
   os << indent << "Memory Limit: " << this->MemoryLimit
      << " MiB (default 0, the memory the system reports available)\n";
+  os << indent << "Minimum Component Size: " << this->MinimumComponentSize
+     << " (default 0, every component)\n";
+  os << indent << "Number Of Threads: " << this->NumberOfThreads << " (default 0, every core)\n";
 }

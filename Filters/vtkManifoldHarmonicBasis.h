@@ -171,13 +171,18 @@ public:
 
   ///@{
   /**
-   * Choose the Laplacian: COTANGENT (0) or INTRINSIC_DELAUNAY (1). INTRINSIC_DELAUNAY flips
-   * edges, on edge lengths alone, until every interior edge is locally Delaunay (its opposite
-   * angles sum to at most pi); the surface and its points stay the same, but the cotan weights
-   * become non-negative and the eigenpairs stop degrading on badly shaped triangles. Its mass
-   * (the output mass array, and the consistent mass if chosen) comes from the intrinsic
-   * triangles: the total area is the same, its distribution over the points differs slightly
-   * from the cotangent option's. Non-manifold edges are never flipped. Default is COTANGENT.
+   * Choose the Laplacian: COTANGENT (0) or INTRINSIC_DELAUNAY (1). INTRINSIC_DELAUNAY is the
+   * robust Laplacian of Sharp & Crane (2020): it takes every triangle twice (the tufted cover,
+   * a closed oriented surface even where the input has boundaries, non-manifold edges or an
+   * inconsistent orientation), lengthens every edge by the smallest amount that gives each
+   * triangle a margin of 1e-5 mean edge lengths in the triangle inequality (mollification), and
+   * flips edges, on edge lengths alone, until every edge is locally Delaunay (its opposite angles
+   * sum to at most pi). The surface and its points stay the same, but the cotan weights become
+   * non-negative and the eigenpairs stop degrading on badly shaped, near-degenerate or
+   * non-manifold triangles; no cleaning is needed first. Its mass (the output mass array, and
+   * the consistent mass if chosen) comes from the intrinsic triangles: the total area is the
+   * same up to the mollification, its distribution over the points differs slightly from the
+   * cotangent option's. Default is COTANGENT.
    */
   vtkSetClampMacro(Laplacian, int, COTANGENT, INTRINSIC_DELAUNAY);
   vtkGetMacro(Laplacian, int);
@@ -257,6 +262,29 @@ public:
 
   ///@{
   /**
+   * Connected components of fewer points than this are left out: their points get zero
+   * harmonics and mass (as points no triangle uses), a warning says how many, and the filters
+   * downstream pass them through unchanged. For scans whose debris (islands of a few points)
+   * should not take a zero eigenvalue each. Every component is solved on its own, so however
+   * many are kept each has exactly one zero eigenvalue. Range [0, VTK_INT_MAX]; 0 keeps every
+   * component. Default is 0.
+   */
+  vtkSetClampMacro(MinimumComponentSize, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MinimumComponentSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Threads of the eigensolver's factorizations, solves and block products; 0 uses every core
+   * of the machine. Results do not depend on it beyond round-off. Range [0, VTK_INT_MAX].
+   * Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
    * lumped mass ("ManifoldHarmonicsMass") and the field data eigenvalues
    * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names,
@@ -295,6 +323,8 @@ protected:
   int MaxIterations;
   int BasisPrecision;
   double MemoryLimit;
+  int MinimumComponentSize;
+  int NumberOfThreads;
 
 private:
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;

@@ -124,6 +124,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->SetProgressText("Basis");
   this->Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   this->Basis->SetBasisPrecision(this->BasisPrecision);
+  this->Basis->SetNumberOfThreads(this->NumberOfThreads);
   // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
   this->Basis->SetAbortExecute(this->GetAbortExecute());
   this->Basis->Update();

@@ -30,7 +30,8 @@
  * - CutoffFraction (default 0.5, range [0.001, 1]): the cutoff as a fraction of omega_max.
  * - BasisPrecision (default vtkManifoldHarmonicBasis::DOUBLE): the precision of the internal
  *   basis; FLOAT halves its memory and changes the smoothed points by float round-off only.
- * - NumberOfThreads (default 0, all cores): the threads of the transform and filter stages.
+ * - NumberOfThreads (default 0, all cores): the threads of the eigensolve and of the transform
+ *   and filter stages.
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
@@ -100,8 +101,10 @@ public:
    * the memory of its n x m harmonics; the eigensolver still works in double and the smoothed
    * points differ from DOUBLE's by float round-off. Default is vtkManifoldHarmonicBasis::DOUBLE.
    */
-  vtkSetClampMacro(
-    BasisPrecision, int, vtkManifoldHarmonicBasis::FLOAT, vtkManifoldHarmonicBasis::DOUBLE);
+  vtkSetClampMacro(BasisPrecision,
+    int,
+    vtkManifoldHarmonicBasis::FLOAT,
+    vtkManifoldHarmonicBasis::DOUBLE);
   vtkGetMacro(BasisPrecision, int);
   void SetBasisPrecisionToFloat() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::FLOAT); }
   void SetBasisPrecisionToDouble() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::DOUBLE); }
@@ -109,7 +112,8 @@ public:
 
   ///@{
   /**
-   * Number of threads of the transform and filter stages (vtkManifoldHarmonicTransform and
+   * Number of threads of the eigensolve and of the transform and filter stages
+   * (vtkManifoldHarmonicBasis, vtkManifoldHarmonicTransform and
    * vtkSpectralFilter::SetNumberOfThreads); 0 uses all the machine's cores. Range
    * [0, VTK_INT_MAX]. Default is 0.
    */

@@ -78,8 +78,9 @@ std::vector<std::string> PreparationWarnings(const PreparedMesh& prepared)
   if (prepared.SmallComponents > 0)
   {
     warnings.push_back("Left out " + std::to_string(prepared.SmallComponents) +
-      " connected components smaller than MinimumComponentSize (" +
-      std::to_string(prepared.SmallComponentPoints) + " points): their harmonics and mass are 0.");
+      (prepared.SmallComponents == 1 ? " connected component" : " connected components") +
+      " smaller than MinimumComponentSize (" + std::to_string(prepared.SmallComponentPoints) +
+      " points): their harmonics and mass are 0.");
   }
   return warnings;
 }

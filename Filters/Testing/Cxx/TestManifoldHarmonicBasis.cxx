@@ -366,6 +366,48 @@ bool TestUnusedPoints()
 }
 
 //------------------------------------------------------------------------------
+// A sphere and a stray triangle (debris): MinimumComponentSize 4 leaves the triangle out (zero
+// harmonics and mass, one zero eigenvalue only); 0 keeps it (two zero eigenvalues).
+bool TestMinimumComponentSize()
+{
+  auto mesh = MakeIcosphere(2, VTK_DOUBLE);
+  const vtkIdType a = mesh->GetPoints()->InsertNextPoint(3.0, 0.0, 0.0);
+  const vtkIdType b = mesh->GetPoints()->InsertNextPoint(3.1, 0.0, 0.0);
+  const vtkIdType c = mesh->GetPoints()->InsertNextPoint(3.0, 0.1, 0.0);
+  mesh->GetPolys()->InsertNextCell({ a, b, c });
+  bool ok = true;
+  for (int minimum : { 0, 4 })
+  {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    basis->SetInputData(mesh);
+    basis->SetNumberOfHarmonics(6);
+    basis->SetMinimumComponentSize(minimum);
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    basis->AddObserver(vtkCommand::WarningEvent, warnings);
+    basis->Update();
+    vtkPolyData* output = basis->GetOutput();
+    vtkDoubleArray* lambda = Eigenvalues(output);
+    vtkDoubleArray* D = Mass(output);
+    ok &= Check(lambda && D && lambda->GetNumberOfTuples() == 6, "a basis of 6 harmonics");
+    if (!lambda || !D)
+    {
+      return false;
+    }
+    const double top = lambda->GetValue(5);
+    const int zeros = (std::abs(lambda->GetValue(0)) < 1e-8 * top ? 1 : 0) +
+      (std::abs(lambda->GetValue(1)) < 1e-8 * top ? 1 : 0);
+    const std::string name = "MinimumComponentSize " + std::to_string(minimum) + ": ";
+    ok &= Check(zeros == (minimum == 0 ? 2 : 1), name + "one zero eigenvalue per component kept");
+    ok &= Check((D->GetValue(a) == 0.0) == (minimum == 4), name + "the debris' mass");
+    ok &= Check((minimum == 4) ==
+        (warnings->GetWarningMessage().find("Left out 1 connected component smaller") !=
+          std::string::npos),
+      name + "the debris left out is named");
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // More harmonics than points: clamped with a warning. Empty input: passed through.
 bool TestClampAndEmpty()
 {
@@ -440,11 +482,11 @@ bool TestBasisPrecision()
   double lambda = 0.0;
   for (int k = 0; k < m; ++k)
   {
-    lambda = std::max(
-      lambda, std::abs(Eigenvalues(output)->GetValue(k) - referenceLambda->GetValue(k)));
+    lambda =
+      std::max(lambda, std::abs(Eigenvalues(output)->GetValue(k) - referenceLambda->GetValue(k)));
   }
-  std::cout << "Float basis: max |float - round(double)| " << worst << ", max |d lambda| "
-            << lambda << std::endl;
+  std::cout << "Float basis: max |float - round(double)| " << worst << ", max |d lambda| " << lambda
+            << std::endl;
   ok &= Check(worst == 0.0, "the float harmonics are the double ones rounded once");
   ok &= Check(lambda < 1e-10, "the eigenvalues do not depend on BasisPrecision");
   return ok;
@@ -520,6 +562,7 @@ int TestManifoldHarmonicBasis(int, char*[])
   ok &= TestQuads();
   ok &= TestUnusedPoints();
   ok &= TestClampAndEmpty();
+  ok &= TestMinimumComponentSize();
   ok &= TestBasisPrecision();
   ok &= TestMemoryGuard();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -9,8 +9,8 @@
 #include "vtkSpectralFilter.h"
 
 #include "ManifoldHarmonicsTestUtilities.h"
-#include "vtkCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkDataArraySelection.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -655,8 +655,7 @@ bool TestAbort()
   Pipeline pipeline(mesh, 20, { "A", "B", "Sum" });
   pipeline.Transform->Update();
   vtkNew<AbortAtFirstProgress> abort;
-  const unsigned long observer =
-    pipeline.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
+  const unsigned long observer = pipeline.Filter->AddObserver(vtkCommand::ProgressEvent, abort);
   vtkPolyData* output = pipeline.Run();
   std::cout << "Abort: " << abort->Count << " progress event(s) for 4 signals, "
             << output->GetNumberOfPoints() << " points and "
@@ -786,11 +785,11 @@ bool TestUnrepresentedComponent()
     moved = std::max(moved, std::sqrt(vtkMath::Distance2BetweenPoints(a, b)));
   }
   std::cout << "Largest move of the sphere without a harmonic: " << moved << std::endl;
-  bool ok = Check(output && output->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
-      moved == 0.0,
-    "points of a component no harmonic represents moved");
-  ok &= Check(warnings->GetWarningMessage().find("none of the 1 harmonics represents") !=
-      std::string::npos,
+  bool ok =
+    Check(output && output->GetNumberOfPoints() == mesh->GetNumberOfPoints() && moved == 0.0,
+      "points of a component no harmonic represents moved");
+  ok &= Check(
+    warnings->GetWarningMessage().find("none of the 1 harmonics represents") != std::string::npos,
     "no warning about the component without a harmonic");
   return ok;
 }
@@ -906,8 +905,8 @@ bool TestNumberOfThreads()
 {
   vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
   Pipeline pipeline(mesh, 30, { "A" });
-  bool ok = Check(pipeline.Transform->GetNumberOfThreads() == 0 &&
-      pipeline.Filter->GetNumberOfThreads() == 0,
+  bool ok = Check(
+    pipeline.Transform->GetNumberOfThreads() == 0 && pipeline.Filter->GetNumberOfThreads() == 0,
     "NumberOfThreads does not default to 0");
   pipeline.Filter->SetNumberOfThreads(-3);
   ok &= Check(pipeline.Filter->GetNumberOfThreads() == 0, "a negative NumberOfThreads is kept");
@@ -921,7 +920,8 @@ bool TestNumberOfThreads()
   pipeline.Transform->SetNumberOfThreads(2);
   pipeline.Filter->SetNumberOfThreads(2);
   vtkPolyData* two = pipeline.Run();
-  const double points = RelativeDifference(two->GetPoints()->GetData(), one->GetPoints()->GetData());
+  const double points =
+    RelativeDifference(two->GetPoints()->GetData(), one->GetPoints()->GetData());
   const double a = RelativeDifference(
     two->GetPointData()->GetArray("A_Filtered"), one->GetPointData()->GetArray("A_Filtered"));
   std::cout << "One thread vs two: points " << points << ", A " << a << std::endl;
