@@ -39,8 +39,17 @@ constexpr Eigen::Index ParallelRows = 2000;
  */
 constexpr double SubtreesPerThread = 8.0;
 
+/**
+ * Scratch space of the factorization, aligned as Eigen aligns its own matrices. Eigen's
+ * vectorized kernels handle the unaligned entries at the start of a block one by one, without
+ * fused multiply-adds where the vectorized part has them: with buffers aligned at random (as
+ * malloc places them, differently on every thread) the rounding of a product would depend on
+ * the thread that computes it.
+ */
+using ScratchBuffer = std::vector<double, Eigen::aligned_allocator<double>>;
+
 /// Grow a scratch buffer to at least `size` entries and return its storage.
-double* Scratch(std::vector<double>& buffer, std::size_t size)
+double* Scratch(ScratchBuffer& buffer, std::size_t size)
 {
   if (buffer.size() < size)
   {
@@ -585,9 +594,9 @@ struct SupernodalLDLT::Workspace
 {
   /// local[i]: the position of row i among the rows of the supernode being factored.
   std::vector<int> Local;
-  std::vector<double> Weighted;
-  std::vector<double> Update;
-  std::vector<double> Pivots;
+  ScratchBuffer Weighted;
+  ScratchBuffer Update;
+  ScratchBuffer Pivots;
   explicit Workspace(Eigen::Index n)
     : Local(static_cast<std::size_t>(n), -1)
   {

@@ -149,8 +149,8 @@ private:
   std::vector<double> Values;
   /// Supernode of each column.
   std::vector<int> SupernodeOf;
-  /// Update from descendant supernode Descendant to supernode s: the rows [Begin, End) of the
-  /// descendant (relative to its rows) are columns of s, and its rows [Begin, end) reach s.
+  /// Update from descendant supernode Descendant to supernode s: the descendant's rows [Begin,
+  /// End) (positions among its rows) are columns of s, and its rows from Begin on are updated.
   struct Update
   {
     int Descendant;
