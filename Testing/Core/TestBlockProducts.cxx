@@ -3,9 +3,11 @@
 // Properties of the narrow block products (Filters/Spectral/Solver/BlockProducts.h): they equal the
 // general products B^T A and A - B C for every width, for bases that are the leading columns of a
 // larger matrix, on one thread and on two; projecting a block out of an orthonormal basis
-// leaves it orthogonal to the basis; and the symmetric sparse product equals Eigen's.
-#include "Solver/BlockProducts.h"
+// leaves it orthogonal to the basis; the symmetric sparse product equals Eigen's; and 2, 4 and 8
+// threads give the results of one.
 #include "Checks.h"
+#include "Common/Threads.h"
+#include "Solver/BlockProducts.h"
 
 #include <Eigen/Dense>
 
@@ -150,10 +152,71 @@ void SymmetricProductMatches()
   }
 }
 
+//------------------------------------------------------------------------------
+void ThreadsMatchOneThread()
+{
+  // The thread-count rule (Common/Threads.h): explicit counts as asked (at most one a row), 0 is
+  // one thread below 8192 rows and every core for tall enough products.
+  Check(BlockThreads(100) == 1, "automatic: 1 thread for 100 rows");
+  Check(BlockThreads(100, 8) == 8, "8 threads asked: 8");
+  Check(BlockThreads(5, 8) == 5, "at most one thread a row");
+  const Eigen::Index tall = Eigen::Index(4096) * 4096;
+  Check(BlockThreads(tall) == ResolveThreads(0),
+    "automatic on " + std::to_string(tall) + " rows: every core (" +
+      std::to_string(ResolveThreads(0)) + ")");
+  Check(ResolveThreads(0) >= 1 && ResolveThreads(3) == 3, "ResolveThreads");
+
+  // Each product on 2, 4 and 8 threads (more than the cores: correctness, not speed) against
+  // one thread: row counts that split unevenly, kernel widths 4, 8 and 16 and the general
+  // product (K = 7, w = 20), relative to the largest entry.
+  const auto relative = [](const DenseMatrix& X, const DenseMatrix& Y)
+  { return (X - Y).cwiseAbs().maxCoeff() / Y.cwiseAbs().maxCoeff(); };
+  for (const Eigen::Index n : { Eigen::Index(9001), Eigen::Index(20011) })
+  {
+    const DenseMatrix storage = Fixed(n, 140, 0.37);
+    const SparseMatrix S = SymmetricPattern(n);
+    const DenseMatrix X = Fixed(n, 40, 0.43);
+    DenseMatrix sparse1(n, X.cols());
+    SymmetricSparseProduct(S, X, sparse1, 1);
+    for (const Eigen::Index K : { Eigen::Index(7), Eigen::Index(134) })
+    {
+      const auto B = storage.leftCols(K);
+      for (const Eigen::Index w : { 3, 8, 12, 20 })
+      {
+        const DenseMatrix A = Fixed(n, w, 0.53);
+        const DenseMatrix coefficients = Fixed(K, w, 0.19);
+        const DenseMatrix C1 = TransposeProduct(B, A, 1);
+        DenseMatrix updated1 = A;
+        SubtractProduct(updated1, B, coefficients, 1);
+        for (const int threads : { 2, 4, 8 })
+        {
+          const std::string shape = "n = " + std::to_string(n) + ", K = " + std::to_string(K) +
+            ", w = " + std::to_string(w) + " on " + std::to_string(threads) + " threads";
+          CheckBelow(
+            relative(TransposeProduct(B, A, threads), C1), 1e-12, shape + ": B^T A vs 1 thread");
+          DenseMatrix updated = A;
+          SubtractProduct(updated, B, coefficients, threads);
+          CheckBelow(relative(updated, updated1), 1e-12, shape + ": A - B C vs 1 thread");
+        }
+      }
+    }
+    for (const int threads : { 2, 4, 8 })
+    {
+      DenseMatrix out(n, X.cols());
+      SymmetricSparseProduct(S, X, out, threads);
+      CheckBelow(relative(out, sparse1),
+        1e-12,
+        "n = " + std::to_string(n) + " on " + std::to_string(threads) +
+          " threads: A X vs 1 thread");
+    }
+  }
+}
+
 const Case Cases[] = {
   { "MatchGeneralProducts", MatchGeneralProducts },
   { "ProjectionOrthogonal", ProjectionOrthogonal },
   { "SymmetricProductMatches", SymmetricProductMatches },
+  { "ThreadsMatchOneThread", ThreadsMatchOneThread },
 };
 } // namespace
 

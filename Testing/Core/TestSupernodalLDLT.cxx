@@ -1,8 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
-// Properties of the supernodal LDL^T factorization (Filters/Spectral/Solver/SupernodalLDLT.h): solves
-// agree with the matrix and with Eigen's own simplicial LDL^T, the pivots count the eigenvalues
-// below a shift (checked against a dense eigensolver), zero pivots are reported.
+// Properties of the supernodal LDL^T factorization (Filters/Spectral/Solver/SupernodalLDLT.h):
+// solves agree with the matrix and with Eigen's own simplicial LDL^T, the pivots count the
+// eigenvalues below a shift (checked against a dense eigensolver), zero pivots are reported; on
+// several threads the factor is bitwise that of one thread, and failures are reported alike.
 #include "Checks.h"
 #include "Meshes.h"
 #include "Operators/Operators.h"
@@ -11,7 +12,9 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 
+#include <limits>
 #include <string>
+#include <vector>
 
 using namespace spectral;
 using namespace spectral::testing;
@@ -125,10 +128,104 @@ void ZeroPivotReported()
   Check(factor.Factorize(pattern), "the same pattern with a non-zero pivot factors");
 }
 
+//------------------------------------------------------------------------------
+/// A noisy torus of about 20,000 points: its elimination tree has many independent subtrees.
+Pencil LargeTorus()
+{
+  const TriangleMesh mesh = NoisyTorusOfSize(20000, 0.02);
+  return { CotanStiffness(mesh), Diagonal(LumpedMass(mesh)) };
+}
+
+//------------------------------------------------------------------------------
+void ThreadsMatchOneThread()
+{
+  // Factor on 1, 2, 4 and 8 threads (more than the cores: the schedule, not the speed, is under
+  // test), positive definite and shifted into the spectrum (indefinite). A factor made on T
+  // threads and solved on one must equal the one-thread factor's solve exactly (the same
+  // factor bit for bit); solving on T threads may round differently (kernel widths).
+  const Pencil p = LargeTorus();
+  Check(p.L.rows() >= 20000, "mesh of " + std::to_string(p.L.rows()) + " points");
+  SupernodalLDLT factor(SparseMatrix(p.L + p.M));
+  const DenseMatrix B = RightHandSides(p.L.rows(), 37);
+  for (const double sigma : { -0.05, 45.0 })
+  {
+    const SparseMatrix A = p.L - sigma * p.M;
+    const std::string shift = "shift " + std::to_string(sigma);
+    factor.SetThreads(1);
+    Check(factor.Factorize(A), shift + ": factorized on 1 thread");
+    const int negative = factor.NegativePivots();
+    Check((sigma < 0.0) == (negative == 0),
+      shift + ": " + std::to_string(negative) + " negative pivots");
+    const DenseMatrix X1 = factor.Solve(B);
+    CheckBelow((A * X1 - B).norm() / B.norm(), 1e-9, shift + ": |A X - B| / |B| on 1 thread");
+    for (const int threads : { 2, 4, 8 })
+    {
+      const std::string on = shift + " on " + std::to_string(threads) + " threads";
+      factor.SetThreads(threads);
+      Check(factor.Factorize(A), on + ": factorized");
+      Check(factor.NegativePivots() == negative,
+        on + ": negative pivots " + std::to_string(factor.NegativePivots()) + ", 1 thread " +
+          std::to_string(negative));
+      const DenseMatrix X = factor.Solve(B);
+      CheckBelow((X - X1).norm() / X1.norm(), 1e-12, on + ": solve vs 1 thread, relative");
+      for (const Eigen::Index count : { 1, 5, 12 })
+      {
+        const DenseMatrix Xc = factor.Solve(B.leftCols(count));
+        CheckBelow((Xc - X1.leftCols(count)).norm() / X1.leftCols(count).norm(),
+          1e-12,
+          on + ", " + std::to_string(count) + " right-hand sides: vs 1 thread");
+      }
+      factor.SetThreads(1);
+      CheckBelow((factor.Solve(B) - X1).cwiseAbs().maxCoeff(),
+        0.0,
+        on + ": the factor is bitwise that of 1 thread (both solved on 1)");
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void ThreadsReportFailures()
+{
+  // A zero pivot on an isolated point (a component of its own: a subtree of the elimination
+  // tree that any thread may take) and a NaN inside the mesh: Factorize returns false on every
+  // number of threads, and the next factorization of a good matrix succeeds.
+  const Pencil p = LargeTorus();
+  const Eigen::Index n = p.L.rows();
+  std::vector<Eigen::Triplet<double>> entries;
+  const SparseMatrix A = p.L + p.M;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+  {
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+    {
+      entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    }
+  }
+  entries.emplace_back(static_cast<int>(n), static_cast<int>(n), 1.0);
+  SparseMatrix good(n + 1, n + 1);
+  good.setFromTriplets(entries.begin(), entries.end());
+  SparseMatrix zero = good;
+  zero.coeffRef(n, n) = 0.0;
+  SparseMatrix nan = good;
+  nan.coeffRef(n / 2, n / 2) = std::numeric_limits<double>::quiet_NaN();
+  SupernodalLDLT factor(good);
+  for (const int threads : { 1, 2, 4, 8 })
+  {
+    const std::string on = " on " + std::to_string(threads) + " threads";
+    factor.SetThreads(threads);
+    Check(!factor.Factorize(zero), "zero pivot of an isolated point" + on + ": false");
+    Check(factor.Factorize(good), "then the good matrix" + on + ": factorized");
+    Check(factor.NegativePivots() == 0, "then the good matrix" + on + ": no negative pivot");
+    Check(!factor.Factorize(nan), "NaN inside the mesh" + on + ": false");
+    Check(factor.Factorize(good), "then the good matrix again" + on + ": factorized");
+  }
+}
+
 const Case Cases[] = {
   { "SolvesAgree", SolvesAgree },
   { "InertiaMatchesDense", InertiaMatchesDense },
   { "ZeroPivotReported", ZeroPivotReported },
+  { "ThreadsMatchOneThread", ThreadsMatchOneThread },
+  { "ThreadsReportFailures", ThreadsReportFailures },
 };
 } // namespace
 

@@ -566,8 +566,12 @@ void ThreadsMatchOneThread()
     "an exception on a helper thread reaches the caller");
   Check(TransformThreads(100, 10) == 1, "automatic: 1 thread for a small product");
   Check(TransformThreads(5, 1000, 8) == 5, "at most one thread a row");
+  Check(TransformThreads(100000, 4, 8) == 8, "8 threads asked: 8");
+  Check(TransformThreads(Eigen::Index(1) << 20, 1 << 10) == ResolveThreads(0),
+    "automatic for a large product: every core (" + std::to_string(ResolveThreads(0)) + ")");
 
-  // Transforms on 1, 2, 3 and 7 threads (random basis, n not a multiple of the blocks).
+  // Transforms on 1, 2, 3, 4, 7 and 8 threads (random basis, n not a multiple of the blocks;
+  // 4 and more oversubscribe a small machine, which is the point: correctness, not speed).
   const Eigen::Index n = 10007;
   const Eigen::Index m = 37;
   const RowMatrix H = RandomSignals(n, m, 9u);
@@ -581,7 +585,7 @@ void ThreadsMatchOneThread()
   const RowMatrix Y1 = InverseTransform(doubles, gains, View(C1), View(X), 0.5, 1);
   const RowMatrix C1f = ForwardTransform(floats, mass, View(X), 1);
   const RowMatrix Y1f = InverseTransform(floats, gains, View(C1f), View(X), 0.5, 1);
-  for (int threads : { 0, 2, 3, 7 })
+  for (int threads : { 0, 2, 3, 4, 7, 8 })
   {
     const std::string on = " on " + std::to_string(threads) + " threads";
     const RowMatrix C = ForwardTransform(doubles, mass, View(X), threads);

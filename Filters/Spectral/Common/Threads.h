@@ -2,18 +2,25 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Threads.h
- * @brief Row ranges of a tall matrix on a few std::threads, for the transforms of Transfer.h.
+ * @brief How many threads the core uses (the one rule), and row ranges of a tall matrix on
+ *        that many std::threads.
  *
- * The forward and inverse transforms stream the n by m basis from memory once; splitting its
- * rows over two cores nearly halves their time. They run on plain std::threads rather than on
- * vtkSMPTools because the core does not know VTK, and because ParaView as packaged by Debian
- * selects vtkSMPTools' Sequential backend, which would run them on one thread.
+ * Every parallel part of the core (the transforms of Transfer.h, the block products of
+ * BlockProducts.h, the factorization and solves of SupernodalLDLT.h) takes a thread count with
+ * the same meaning, resolved by ResolveThreads: a count >= 1 is used as is, 0 means every core
+ * of the machine. Where 0 is asked for, products too small to gain from threads stay on fewer
+ * (ThreadsForWork: each thread gets at least a minimum amount of work), never on more than the
+ * cores.
  *
- * Each range is a contiguous block of rows; the work for range p must only write data that
- * belongs to range p (its own rows of an output, or its own partial sum), so the ranges need no
- * locking. Nothing is copied: the work reads the shared inputs in place.
+ * They run on plain std::threads rather than on vtkSMPTools because the core does not know VTK,
+ * and because ParaView as packaged by Debian selects vtkSMPTools' Sequential backend, which
+ * would run them on one thread.
  *
- * Used by Transfer.cxx; tested by Testing/Core/TestTransfer.cxx (ThreadsMatchOneThread).
+ * Each range of ForEachRowRange is a contiguous block of rows; the work for range p must only
+ * write data that belongs to range p (its own rows of an output, or its own partial sum), so the
+ * ranges need no locking. Nothing is copied: the work reads the shared inputs in place.
+ *
+ * Tested by Testing/Core/TestTransfer.cxx (ThreadsMatchOneThread).
  */
 #ifndef spectral_Threads_h
 #define spectral_Threads_h
@@ -21,6 +28,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <climits>
 #include <exception>
 #include <system_error>
 #include <thread>
@@ -29,21 +37,47 @@
 namespace spectral
 {
 /**
- * The number of threads the transforms use when asked for 0 (automatic): 2, or 1 on a machine
- * with one core, and 1 for products of fewer than 2^18 basis entries (n x m), where starting a
- * thread costs more than it saves.
+ * The thread count of the core: `requested` if it is >= 1, else (0, automatic) the number of
+ * cores of the machine (std::thread::hardware_concurrency(), 1 where it is unknown).
+ */
+inline int ResolveThreads(int requested)
+{
+  if (requested >= 1)
+  {
+    return requested;
+  }
+  const unsigned int cores = std::thread::hardware_concurrency();
+  return cores == 0 ? 1 : static_cast<int>(std::min<unsigned int>(cores, INT_MAX));
+}
+
+/**
+ * Threads for `work` units of work where a thread pays off only with at least `perThread` of
+ * them: `requested` if it is >= 1, else ResolveThreads(0) but no more than work / perThread,
+ * at least 1.
+ */
+inline int ThreadsForWork(Eigen::Index work, Eigen::Index perThread, int requested)
+{
+  if (requested >= 1)
+  {
+    return requested;
+  }
+  const Eigen::Index useful =
+    std::max<Eigen::Index>(1, work / std::max<Eigen::Index>(1, perThread));
+  return static_cast<int>(std::min<Eigen::Index>(ResolveThreads(0), useful));
+}
+
+/**
+ * The number of threads of the transforms of an n by m basis: ThreadsForWork with at least 2^17
+ * basis entries per thread (below 2^18 entries, starting a thread costs more than it saves),
+ * and at most one thread a row.
  * \param n Rows of the basis.
  * \param m Columns of the basis.
- * \param requested Threads asked for; >= 1 is returned as is (capped at n, at least 1).
+ * \param requested Threads asked for, as ResolveThreads.
  */
 inline int TransformThreads(Eigen::Index n, Eigen::Index m, int requested = 0)
 {
-  if (requested <= 0)
-  {
-    const unsigned int cores = std::thread::hardware_concurrency();
-    requested = (cores == 1 || n * m < (Eigen::Index(1) << 18)) ? 1 : 2;
-  }
-  return static_cast<int>(std::max<Eigen::Index>(1, std::min<Eigen::Index>(requested, n)));
+  const int threads = ThreadsForWork(n * m, Eigen::Index(1) << 17, requested);
+  return static_cast<int>(std::max<Eigen::Index>(1, std::min<Eigen::Index>(threads, n)));
 }
 
 /**

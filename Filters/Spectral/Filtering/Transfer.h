@@ -49,13 +49,14 @@ using ConstRowView = Eigen::Map<const RowMatrix>;
  *
  * X~ = H^T (D X), that is x~_kj = sum_i H_ik D_ii X_ij. One pass over H, no copy of it: each
  * thread sums the products of its own rows into its own m by c partial sum, and the partial
- * sums are added at the end (so 1 and 2 threads differ by round-off only).
+ * sums are added at the end in the order of the rows (so thread counts differ by round-off only).
  *
  * \param H n by m basis, double or float, M-orthonormal for M = diag(mass) (H^T D H = I).
  * \param mass Lumped mass D, length n, the one the basis was computed with. Points of zero mass
  *        add nothing, even where X is not finite there (points used by no triangle).
  * \param X n by c signals (c >= 1 components per point).
- * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m).
+ * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m): every
+ *        core (Common/Threads.h), fewer for small products.
  * \return m by c coefficients, row k for harmonic k, accumulated in double.
  * \throws InvalidInput if H, mass and X disagree on n.
  */
@@ -78,7 +79,8 @@ RowMatrix ForwardTransform(
  * \param coefficients m by c, the ForwardTransform of X.
  * \param X n by c, the original signals; may have 0 rows when hfGain == 0 (it is then unused).
  * \param hfGain Gain applied to the part of X that the basis does not represent (0: drop it).
- * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m).
+ * \param threads Threads to split the rows over; 0 (default) chooses TransformThreads(n, m): every
+ *        core (Common/Threads.h), fewer for small products.
  * \return n by c filtered signals, computed in double.
  * \throws InvalidInput if the sizes disagree, or X is empty while hfGain != 0.
  */

@@ -283,17 +283,19 @@ void SubtractProductOfWidth(Eigen::Ref<DenseMatrix> A,
 } // namespace
 
 //------------------------------------------------------------------------------
-int BlockThreads(Eigen::Index n)
+int BlockThreads(Eigen::Index n, int requested)
 {
-  return n < 8192 ? 1 : 2;
+  const int threads = ThreadsForWork(n, 4096, requested);
+  return static_cast<int>(std::max<Eigen::Index>(1, std::min<Eigen::Index>(threads, n)));
 }
 
 //------------------------------------------------------------------------------
 DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B,
-  const Eigen::Ref<const DenseMatrix>& A)
+  const Eigen::Ref<const DenseMatrix>& A,
+  int threads)
 {
   const Eigen::Index w = A.cols();
-  const int parts = BlockThreads(A.rows());
+  const int parts = BlockThreads(A.rows(), threads);
   if (w == 0 || B.cols() == 0)
   {
     return DenseMatrix::Zero(B.cols(), w);
@@ -309,22 +311,29 @@ DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B,
     default:
       break;
   }
-  DenseMatrix partial[2] = { DenseMatrix::Zero(B.cols(), w), DenseMatrix::Zero(B.cols(), w) };
+  std::vector<DenseMatrix> partial(static_cast<std::size_t>(parts));
   ForEachRowRange(A.rows(),
     parts,
-    [&](int part, Eigen::Index first, Eigen::Index count) {
-      partial[part].noalias() = B.middleRows(first, count).transpose() * A.middleRows(first, count);
+    [&](int part, Eigen::Index first, Eigen::Index count)
+    {
+      partial[static_cast<std::size_t>(part)].noalias() =
+        B.middleRows(first, count).transpose() * A.middleRows(first, count);
     });
-  return partial[0] + partial[1];
+  for (std::size_t part = 1; part < partial.size(); ++part)
+  {
+    partial[0] += partial[part];
+  }
+  return partial[0];
 }
 
 //------------------------------------------------------------------------------
 void SubtractProduct(Eigen::Ref<DenseMatrix> A,
   const Eigen::Ref<const DenseMatrix>& B,
-  const DenseMatrix& C)
+  const DenseMatrix& C,
+  int threads)
 {
   const Eigen::Index w = A.cols();
-  const int parts = BlockThreads(A.rows());
+  const int parts = BlockThreads(A.rows(), threads);
   if (w == 0 || B.cols() == 0)
   {
     return;
@@ -352,11 +361,12 @@ void SubtractProduct(Eigen::Ref<DenseMatrix> A,
 //------------------------------------------------------------------------------
 void SymmetricSparseProduct(const SparseMatrix& A,
   const Eigen::Ref<const DenseMatrix>& X,
-  Eigen::Ref<DenseMatrix> out)
+  Eigen::Ref<DenseMatrix> out,
+  int threads)
 {
   constexpr int Width = NarrowBlockWidth;
   const Eigen::Index n = A.rows();
-  const int parts = BlockThreads(n);
+  const int parts = BlockThreads(n, threads);
   if (X.cols() < 8 || parts == 1 || !A.isCompressed())
   {
     out.noalias() = A * X;

@@ -3,7 +3,7 @@
 /**
  * @file BlockProducts.h
  * @brief Products of a tall matrix with a few columns, the reorthogonalization of the block
- *        Lanczos iteration, rows split over two threads.
+ *        Lanczos iteration, rows split over threads.
  *
  * Each block of the iteration is projected out of the whole Krylov basis B (n x K, K up to a
  * few hundred): C = B^T A, then A -= B C, with A only a few columns wide. Both products read B
@@ -17,6 +17,12 @@
  *
  * The same holds for products of the sparse matrices with many vectors (SymmetricSparseProduct).
  *
+ * Every product takes a thread count `threads` as in Common/Threads.h (0, the default: every
+ * core, BlockThreads). The rows are split into that many contiguous ranges; each range writes
+ * its own rows, or (B^T A) its own partial sum, and the partial sums are added in the order of
+ * the ranges, so the result does not depend on the scheduling and differs between thread counts
+ * only by the rounding of those sums.
+ *
  * Used by EigenSolver.cxx; tested by Testing/Core/TestBlockProducts.cxx.
  */
 #ifndef spectral_BlockProducts_h
@@ -29,39 +35,48 @@ namespace spectral
 /// Widest A the kernels take.
 constexpr int NarrowBlockWidth = 16;
 
-/// Number of row ranges (threads) for products over n rows: 1 below 8192 rows, else 2.
-int BlockThreads(Eigen::Index n);
+/**
+ * Number of row ranges (threads) for products over n rows: `requested` if >= 1 (at most n),
+ * else ThreadsForWork (Common/Threads.h) with at least 4096 rows a thread, so 1 below 8192 rows.
+ */
+int BlockThreads(Eigen::Index n, int requested = 0);
 
 /**
  * B^T A for a tall n x K matrix B and an n x w matrix A.
  * \param B column-major, any outer stride (e.g. the leading columns of a larger matrix).
  * \param A n x w, any outer stride.
+ * \param threads As BlockThreads.
  * \return K x w.
  */
 DenseMatrix TransposeProduct(const Eigen::Ref<const DenseMatrix>& B,
-  const Eigen::Ref<const DenseMatrix>& A);
+  const Eigen::Ref<const DenseMatrix>& A,
+  int threads = 0);
 
 /**
  * A -= B C for a tall n x K matrix B, an n x w matrix A and a K x w matrix C.
  * \param A updated in place.
+ * \param threads As BlockThreads.
  */
 void SubtractProduct(Eigen::Ref<DenseMatrix> A,
   const Eigen::Ref<const DenseMatrix>& B,
-  const DenseMatrix& C);
+  const DenseMatrix& C,
+  int threads = 0);
 
 /**
  * out = A X for a symmetric sparse A (both triangles stored, as the stiffness, mass and shifted
  * matrices are) and a tall n x k X. Column i of A is row i, so each row of the result is one
  * pass over a column of A with 16 columns of X at a time kept row by row (a row-major copy), and
- * the rows are split over two threads. Eigen's sparse-dense product scatters into one column at
+ * the rows are split over threads. Eigen's sparse-dense product scatters into one column at
  * a time on one thread: for the 100,000-point torus and 100 columns it took 123 to 158 ms where
- * this takes 63 to 92 ms. Fewer than 8 columns, fewer than 8192 rows or an uncompressed A use
- * Eigen's product.
+ * this takes 63 to 92 ms (two threads). Fewer than 8 columns, one thread (by default below 8192
+ * rows) or an uncompressed A use Eigen's product.
  * \param out n x k, not aliasing X.
+ * \param threads As BlockThreads.
  */
 void SymmetricSparseProduct(const SparseMatrix& A,
   const Eigen::Ref<const DenseMatrix>& X,
-  Eigen::Ref<DenseMatrix> out);
+  Eigen::Ref<DenseMatrix> out,
+  int threads = 0);
 } // namespace spectral
 
 #endif

@@ -1,15 +1,22 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/SupernodalLDLT.h"
+#include "Common/Threads.h"
 
 #include <cholmod.h>
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
 #include <memory>
+#include <mutex>
+#include <queue>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <type_traits>
+#include <utility>
 
 namespace spectral
 {
@@ -22,8 +29,27 @@ using ConstBlockView = Eigen::Map<const DenseMatrix, 0, Stride>;
 using RowBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using RowBlockView = Eigen::Map<RowBlock>;
 
+/// Matrices of fewer rows are factored and solved on one thread: a thread costs more than it saves.
+constexpr Eigen::Index ParallelRows = 2000;
+
+/**
+ * Factorize splits the elimination tree into subtrees of at most 1 / (SubtreesPerThread x
+ * threads) of the work, factored whole by one thread each, largest first: enough pieces to keep
+ * every thread busy while the separators above them wait for their children.
+ */
+constexpr double SubtreesPerThread = 8.0;
+
+/**
+ * Scratch space of the factorization, aligned as Eigen aligns its own matrices. Eigen's
+ * vectorized kernels handle the unaligned entries at the start of a block one by one, without
+ * fused multiply-adds where the vectorized part has them: with buffers aligned at random (as
+ * malloc places them, differently on every thread) the rounding of a product would depend on
+ * the thread that computes it.
+ */
+using ScratchBuffer = std::vector<double, Eigen::aligned_allocator<double>>;
+
 /// Grow a scratch buffer to at least `size` entries and return its storage.
-double* Scratch(std::vector<double>& buffer, std::size_t size)
+double* Scratch(ScratchBuffer& buffer, std::size_t size)
 {
   if (buffer.size() < size)
   {
@@ -204,6 +230,208 @@ private:
   std::ptrdiff_t Next;
 };
 
+/**
+ * The tasks of a factorization on several threads. The elimination tree is cut into subtrees of
+ * at most 1 / (SubtreesPerThread x threads) of the work: the largest subtree is split until none
+ * is larger, and the supernodes split off become tasks of one supernode each. A subtree is
+ * factored whole by one thread in increasing supernode order (children come before parents); a
+ * supernode above the cut becomes ready when the tasks of its children are done.
+ */
+struct TaskPlan
+{
+  /// The supernodes of the task rooted at t: Members[Start[t] .. Start[t+1]), increasing.
+  std::vector<int> Start;
+  std::vector<int> Members;
+  /// Pending[t]: the children of t whose tasks are not done yet (0 for a subtree's root).
+  std::vector<int> Pending;
+  /// The roots of the subtrees, ready from the start, smallest work first.
+  std::vector<int> Ready;
+  /// Number of tasks.
+  int Tasks = 0;
+};
+
+/// Cut the tree given by `parent` (-1 at roots; children before parents) into tasks for
+/// `threads` threads, subtreeWork[s] the work of the subtree rooted at s.
+TaskPlan PlanTasks(const std::vector<int>& parent,
+  const std::vector<double>& subtreeWork,
+  int threads)
+{
+  const std::size_t count = parent.size();
+  std::vector<std::vector<int>> children(count);
+  std::priority_queue<std::pair<double, int>> largest;
+  double total = 0.0;
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    if (parent[s] == -1)
+    {
+      largest.emplace(subtreeWork[s], static_cast<int>(s));
+      total += subtreeWork[s];
+    }
+    else
+    {
+      children[static_cast<std::size_t>(parent[s])].push_back(static_cast<int>(s));
+    }
+  }
+  TaskPlan plan;
+  plan.Pending.assign(count, 0);
+  // owner[s]: the task of supernode s, its own index for the roots of tasks.
+  std::vector<int> owner(count, -1);
+  std::vector<std::pair<double, int>> subtrees;
+  const double limit = total / (SubtreesPerThread * threads);
+  while (!largest.empty())
+  {
+    const std::pair<double, int> top = largest.top();
+    largest.pop();
+    const std::vector<int>& below = children[static_cast<std::size_t>(top.second)];
+    owner[static_cast<std::size_t>(top.second)] = top.second;
+    ++plan.Tasks;
+    if (top.first <= limit || below.empty())
+    {
+      subtrees.push_back(top);
+      continue;
+    }
+    plan.Pending[static_cast<std::size_t>(top.second)] = static_cast<int>(below.size());
+    for (const int child : below)
+    {
+      largest.emplace(subtreeWork[static_cast<std::size_t>(child)], child);
+    }
+  }
+  std::sort(subtrees.begin(), subtrees.end());
+  for (const std::pair<double, int>& subtree : subtrees)
+  {
+    plan.Ready.push_back(subtree.second);
+  }
+  // Below the cut, a supernode belongs to the task of its parent.
+  plan.Start.assign(count + 1, 0);
+  for (std::size_t s = count; s-- > 0;)
+  {
+    if (owner[s] == -1)
+    {
+      owner[s] = owner[static_cast<std::size_t>(parent[s])];
+    }
+    ++plan.Start[static_cast<std::size_t>(owner[s]) + 1];
+  }
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    plan.Start[s + 1] += plan.Start[s];
+  }
+  plan.Members.resize(count);
+  std::vector<int> next(plan.Start.begin(), plan.Start.end() - 1);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    plan.Members[static_cast<std::size_t>(next[static_cast<std::size_t>(owner[s])]++)] =
+      static_cast<int>(s);
+  }
+  return plan;
+}
+
+/**
+ * Runs every task of a TaskPlan on up to `threads` threads (the calling thread is one of them),
+ * each after the tasks of its children: run(task, thread), with thread in [0, threads), returns
+ * false to stop. Ready tasks are taken from a stack under one mutex, which also orders the
+ * writes of each task before the reads of its parent: the separators freed last go first (they
+ * are on the longest path), then the largest subtree.
+ */
+template<typename Run>
+class TaskRunner
+{
+public:
+  TaskRunner(TaskPlan& plan, const std::vector<int>& parent, const Run& run)
+    : Plan(plan)
+    , Parent(parent)
+    , Work(run)
+    , Remaining(plan.Tasks)
+  {
+  }
+
+  /// \return false if a run returned false (the other threads take no more tasks).
+  /// \throws The first exception a run threw, after every thread has stopped.
+  bool Execute(int threads)
+  {
+    std::vector<std::thread> helpers;
+    for (int thread = 1; thread < threads; ++thread)
+    {
+      try
+      {
+        helpers.emplace_back(&TaskRunner::Loop, this, thread);
+      }
+      catch (const std::system_error&)
+      {
+        break; // no more threads to be had: the others take the tasks
+      }
+    }
+    this->Loop(0);
+    for (std::thread& helper : helpers)
+    {
+      helper.join();
+    }
+    if (this->Error)
+    {
+      std::rethrow_exception(this->Error);
+    }
+    return !this->Failed;
+  }
+
+private:
+  void Loop(int thread)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    try
+    {
+      for (;;)
+      {
+        this->Wake.wait(lock,
+          [this]() { return this->Failed || this->Remaining == 0 || !this->Plan.Ready.empty(); });
+        if (this->Failed || this->Remaining == 0)
+        {
+          return;
+        }
+        const int task = this->Plan.Ready.back();
+        this->Plan.Ready.pop_back();
+        lock.unlock();
+        const bool done = this->Work(task, thread);
+        lock.lock();
+        this->Finished(task, done);
+      }
+    }
+    catch (...)
+    {
+      if (!lock.owns_lock())
+      {
+        lock.lock();
+      }
+      this->Error = this->Error ? this->Error : std::current_exception();
+      this->Failed = true;
+      this->Wake.notify_all();
+    }
+  }
+
+  /// Bookkeeping after a task, under the mutex: its parent may become ready.
+  void Finished(int task, bool done)
+  {
+    const int up = this->Parent[static_cast<std::size_t>(task)];
+    this->Failed = this->Failed || !done;
+    if (--this->Remaining == 0 || !done)
+    {
+      this->Wake.notify_all();
+    }
+    else if (up != -1 && --this->Plan.Pending[static_cast<std::size_t>(up)] == 0)
+    {
+      this->Plan.Ready.push_back(up);
+      this->Wake.notify_one();
+    }
+  }
+
+  TaskPlan& Plan;
+  const std::vector<int>& Parent;
+  const Run& Work;
+  std::mutex Mutex;
+  std::condition_variable Wake;
+  int Remaining;
+  bool Failed = false;
+  std::exception_ptr Error;
+};
+
 /// CHOLMOD's workspace for one analysis, released on every path out.
 struct CholmodSession
 {
@@ -294,6 +522,62 @@ SupernodalLDLT::SupernodalLDLT(const SparseMatrix& pattern)
     std::fill(this->SupernodeOf.begin() + super[k], this->SupernodeOf.begin() + super[k + 1],
       static_cast<int>(k));
   }
+  this->ScheduleUpdates();
+}
+
+//------------------------------------------------------------------------------
+void SupernodalLDLT::ScheduleUpdates()
+{
+  // The left-looking sweep without the arithmetic: head[s] lists the supernodes whose next
+  // update goes to s (last linked first); position[d] is the first row (relative to d's rows)
+  // of d not yet used for an update. Each supernode records its updates in the order the sweep
+  // meets them, which Factorize keeps on any number of threads.
+  const int nsuper = this->Supernodes();
+  std::vector<int> head(static_cast<std::size_t>(nsuper), -1);
+  std::vector<int> next(static_cast<std::size_t>(nsuper), -1);
+  std::vector<int> position(static_cast<std::size_t>(nsuper), 0);
+  this->UpdateStart.assign(1, 0);
+  this->Updates.clear();
+  this->Parent.assign(static_cast<std::size_t>(nsuper), -1);
+  this->SubtreeWork.assign(static_cast<std::size_t>(nsuper), 0.0);
+  for (int s = 0; s < nsuper; ++s)
+  {
+    const Node node = this->Supernode(s);
+    double work = static_cast<double>(node.Rows) * node.Columns * node.Columns;
+    for (int d = head[s]; d != -1;)
+    {
+      const int following = next[d];
+      const Node descendant = this->Supernode(d);
+      const int p1 = position[d];
+      int p2 = p1;
+      while (p2 < descendant.Rows && descendant.RowIndex[p2] < node.First + node.Columns)
+      {
+        ++p2;
+      }
+      this->Updates.push_back({ d, p1, p2 });
+      work += static_cast<double>(descendant.Rows - p1) * (p2 - p1) * descendant.Columns;
+      position[d] = p2;
+      if (p2 < descendant.Rows)
+      {
+        const int t = this->SupernodeOf[static_cast<std::size_t>(descendant.RowIndex[p2])];
+        next[d] = head[t];
+        head[t] = d;
+      }
+      d = following;
+    }
+    this->UpdateStart.push_back(static_cast<int>(this->Updates.size()));
+    this->SubtreeWork[static_cast<std::size_t>(s)] += work;
+    if (node.Rows > node.Columns)
+    {
+      const int t = this->SupernodeOf[static_cast<std::size_t>(node.RowIndex[node.Columns])];
+      this->Parent[static_cast<std::size_t>(s)] = t;
+      this->SubtreeWork[static_cast<std::size_t>(t)] +=
+        this->SubtreeWork[static_cast<std::size_t>(s)];
+      position[s] = node.Columns;
+      next[s] = head[t];
+      head[t] = s;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -305,6 +589,21 @@ SupernodalLDLT::Node SupernodalLDLT::Supernode(int s) const
 }
 
 //------------------------------------------------------------------------------
+/// The scratch space of one thread of Factorize.
+struct SupernodalLDLT::Workspace
+{
+  /// local[i]: the position of row i among the rows of the supernode being factored.
+  std::vector<int> Local;
+  ScratchBuffer Weighted;
+  ScratchBuffer Update;
+  ScratchBuffer Pivots;
+  explicit Workspace(Eigen::Index n)
+    : Local(static_cast<std::size_t>(n), -1)
+  {
+  }
+};
+
+//------------------------------------------------------------------------------
 bool SupernodalLDLT::Factorize(const SparseMatrix& A)
 {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse(
@@ -314,124 +613,162 @@ bool SupernodalLDLT::Factorize(const SparseMatrix& A)
   this->Permuted.selfadjointView<Eigen::Lower>() =
     A.selfadjointView<Eigen::Lower>().twistedBy(inverse);
 
-  std::fill(this->Values.begin(), this->Values.end(), 0.0);
   this->Negative = 0;
-  const int nsuper = this->Supernodes();
-  // Left-looking: head[s] lists the supernodes whose next update goes to s; position[d] is the
-  // first row (relative to d's rows) of d not yet used for an update.
-  std::vector<int> head(static_cast<std::size_t>(nsuper), -1);
-  std::vector<int> next(static_cast<std::size_t>(nsuper), -1);
-  std::vector<int> position(static_cast<std::size_t>(nsuper), 0);
-  std::vector<int> local(static_cast<std::size_t>(this->Size), -1);
-  std::vector<double> weighted;
-  std::vector<double> update;
-  std::vector<double> pivots;
-
-  for (int s = 0; s < nsuper; ++s)
+  const int threads = this->Size < ParallelRows ? 1 : ResolveThreads(this->Threads);
+  if (threads > 1 && this->Supernodes() > 1)
   {
-    const Node node = this->Supernode(s);
-    const int k1 = node.First;
-    const int nscol = node.Columns;
-    const int nsrow = node.Rows;
-    const int* rows = node.RowIndex;
-    double* X = this->Values.data() + this->ValueStart[s];
-    for (int k = 0; k < nsrow; ++k)
+    return this->FactorOnThreads(threads);
+  }
+  Workspace work(this->Size);
+  int negative = 0;
+  for (int s = 0; s < this->Supernodes(); ++s)
+  {
+    if (!this->FactorSupernode(s, work, negative))
     {
-      local[static_cast<std::size_t>(rows[k])] = k;
+      return false;
     }
+  }
+  this->Negative = negative;
+  return true;
+}
 
-    // Assemble the columns of A.
+//------------------------------------------------------------------------------
+bool SupernodalLDLT::FactorSupernode(int s, Workspace& work, int& negative)
+{
+  const Node node = this->Supernode(s);
+  const int k1 = node.First;
+  const int nscol = node.Columns;
+  const int nsrow = node.Rows;
+  const int* rows = node.RowIndex;
+  double* X = this->Values.data() + this->ValueStart[s];
+  std::fill(X, this->Values.data() + this->ValueStart[s + 1], 0.0);
+  std::vector<int>& local = work.Local;
+  for (int k = 0; k < nsrow; ++k)
+  {
+    local[static_cast<std::size_t>(rows[k])] = k;
+  }
+
+  // Assemble the columns of A.
+  for (int j = 0; j < nscol; ++j)
+  {
+    for (SparseMatrix::InnerIterator it(this->Permuted, k1 + j); it; ++it)
+    {
+      X[local[static_cast<std::size_t>(it.row())] + static_cast<std::ptrdiff_t>(j) * nsrow] +=
+        it.value();
+    }
+  }
+
+  // Subtract L_d D_d L_d^T from every descendant d with rows in [k1, k1 + nscol), in the order
+  // of ScheduleUpdates.
+  for (int u = this->UpdateStart[s]; u < this->UpdateStart[s + 1]; ++u)
+  {
+    const Update& update = this->Updates[static_cast<std::size_t>(u)];
+    const Node descendant = this->Supernode(update.Descendant);
+    const int* drows = descendant.RowIndex;
+    const int ndrow = descendant.Rows;
+    const int ndcol = descendant.Columns;
+    const int p1 = update.Begin;
+    const int ndrow1 = update.End - p1;
+    const int ndrow2 = ndrow - p1;
+    const ConstBlockView Ld(descendant.Values, ndrow, ndcol, Stride(ndrow));
+    BlockView W(Scratch(work.Weighted, static_cast<std::size_t>(ndrow1) * ndcol),
+      ndrow1,
+      ndcol,
+      Stride(ndrow1));
+    for (int c = 0; c < ndcol; ++c)
+    {
+      W.col(c) = Ld.col(c).segment(p1, ndrow1) * Ld(c, c);
+    }
+    BlockView C(Scratch(work.Update, static_cast<std::size_t>(ndrow2) * ndrow1),
+      ndrow2,
+      ndrow1,
+      Stride(ndrow2));
+    C.noalias() = Ld.middleRows(p1, ndrow2) * W.transpose();
+    for (int jj = 0; jj < ndrow1; ++jj)
+    {
+      double* target = X + static_cast<std::ptrdiff_t>(drows[p1 + jj] - k1) * nsrow;
+      for (int ii = jj; ii < ndrow2; ++ii)
+      {
+        target[local[static_cast<std::size_t>(drows[p1 + ii])]] -= C(ii, jj);
+      }
+    }
+  }
+
+  // Dense LDL^T of the diagonal block, without pivoting.
+  BlockView X11(X, nscol, nscol, Stride(nsrow));
+  double* D = Scratch(work.Pivots, static_cast<std::size_t>(nscol));
+  for (int j = 0; j < nscol; ++j)
+  {
+    if (j > 0)
+    {
+      const Vector v = Eigen::Map<const Vector>(D, j).cwiseProduct(X11.row(j).head(j).transpose());
+      X11.col(j).tail(nscol - j).noalias() -= X11.block(j, 0, nscol - j, j) * v;
+    }
+    const double pivot = X11(j, j);
+    if (!std::isfinite(pivot) || pivot == 0.0)
+    {
+      return false;
+    }
+    D[j] = pivot;
+    negative += pivot < 0.0 ? 1 : 0;
+    X11.col(j).tail(nscol - j - 1) /= pivot;
+  }
+  // L21 = A21 L11^-T D^-1.
+  if (nsrow > nscol)
+  {
+    BlockView X21(X + nscol, nsrow - nscol, nscol, Stride(nsrow));
+    X11.transpose().triangularView<Eigen::UnitUpper>().solveInPlace<Eigen::OnTheRight>(X21);
     for (int j = 0; j < nscol; ++j)
     {
-      for (SparseMatrix::InnerIterator it(this->Permuted, k1 + j); it; ++it)
-      {
-        X[local[static_cast<std::size_t>(it.row())] + static_cast<std::ptrdiff_t>(j) * nsrow] +=
-          it.value();
-      }
-    }
-
-    // Subtract L_d D_d L_d^T from every descendant d with rows in [k1, k1 + nscol).
-    for (int d = head[s]; d != -1;)
-    {
-      const int following = next[d];
-      const Node descendant = this->Supernode(d);
-      const int* drows = descendant.RowIndex;
-      const int ndrow = descendant.Rows;
-      const int ndcol = descendant.Columns;
-      const int p1 = position[d];
-      int p2 = p1;
-      while (p2 < ndrow && drows[p2] < k1 + nscol)
-      {
-        ++p2;
-      }
-      const int ndrow1 = p2 - p1;
-      const int ndrow2 = ndrow - p1;
-      const ConstBlockView Ld(descendant.Values, ndrow, ndcol, Stride(ndrow));
-      BlockView W(Scratch(weighted, static_cast<std::size_t>(ndrow1) * ndcol), ndrow1, ndcol,
-        Stride(ndrow1));
-      for (int c = 0; c < ndcol; ++c)
-      {
-        W.col(c) = Ld.col(c).segment(p1, ndrow1) * Ld(c, c);
-      }
-      BlockView C(Scratch(update, static_cast<std::size_t>(ndrow2) * ndrow1), ndrow2, ndrow1,
-        Stride(ndrow2));
-      C.noalias() = Ld.middleRows(p1, ndrow2) * W.transpose();
-      for (int jj = 0; jj < ndrow1; ++jj)
-      {
-        double* target =
-          X + static_cast<std::ptrdiff_t>(drows[p1 + jj] - k1) * nsrow;
-        for (int ii = jj; ii < ndrow2; ++ii)
-        {
-          target[local[static_cast<std::size_t>(drows[p1 + ii])]] -= C(ii, jj);
-        }
-      }
-      position[d] = p2;
-      if (p2 < ndrow)
-      {
-        const int t = this->SupernodeOf[static_cast<std::size_t>(drows[p2])];
-        next[d] = head[t];
-        head[t] = d;
-      }
-      d = following;
-    }
-
-    // Dense LDL^T of the diagonal block, without pivoting.
-    BlockView X11(X, nscol, nscol, Stride(nsrow));
-    double* D = Scratch(pivots, static_cast<std::size_t>(nscol));
-    for (int j = 0; j < nscol; ++j)
-    {
-      if (j > 0)
-      {
-        const Vector v = Eigen::Map<const Vector>(D, j).cwiseProduct(
-          X11.row(j).head(j).transpose());
-        X11.col(j).tail(nscol - j).noalias() -= X11.block(j, 0, nscol - j, j) * v;
-      }
-      const double pivot = X11(j, j);
-      if (!std::isfinite(pivot) || pivot == 0.0)
+      X21.col(j) /= D[j];
+      if (!X21.col(j).allFinite())
       {
         return false;
       }
-      D[j] = pivot;
-      this->Negative += pivot < 0.0 ? 1 : 0;
-      X11.col(j).tail(nscol - j - 1) /= pivot;
     }
-    // L21 = A21 L11^-T D^-1.
-    if (nsrow > nscol)
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool SupernodalLDLT::FactorOnThreads(int threads)
+{
+  TaskPlan plan = PlanTasks(this->Parent, this->SubtreeWork, threads);
+  std::vector<std::unique_ptr<Workspace>> work(static_cast<std::size_t>(threads));
+  std::vector<int> negative(static_cast<std::size_t>(threads), 0);
+  const auto run = [this, &plan, &work, &negative](int task, int thread)
+  {
+    return this->FactorTask(plan.Members.data() + plan.Start[static_cast<std::size_t>(task)],
+      plan.Members.data() + plan.Start[static_cast<std::size_t>(task) + 1],
+      work[static_cast<std::size_t>(thread)],
+      negative[static_cast<std::size_t>(thread)]);
+  };
+  if (!TaskRunner<decltype(run)>(plan, this->Parent, run).Execute(threads))
+  {
+    return false;
+  }
+  for (const int count : negative)
+  {
+    this->Negative += count;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool SupernodalLDLT::FactorTask(const int* first,
+  const int* last,
+  std::unique_ptr<Workspace>& work,
+  int& negative)
+{
+  if (!work)
+  {
+    work.reset(new Workspace(this->Size));
+  }
+  for (const int* s = first; s != last; ++s)
+  {
+    if (!this->FactorSupernode(*s, *work, negative))
     {
-      BlockView X21(X + nscol, nsrow - nscol, nscol, Stride(nsrow));
-      X11.transpose().triangularView<Eigen::UnitUpper>().solveInPlace<Eigen::OnTheRight>(X21);
-      for (int j = 0; j < nscol; ++j)
-      {
-        X21.col(j) /= D[j];
-        if (!X21.col(j).allFinite())
-        {
-          return false;
-        }
-      }
-      const int t = this->SupernodeOf[static_cast<std::size_t>(rows[nscol])];
-      position[s] = nscol;
-      next[s] = head[t];
-      head[t] = s;
+      return false;
     }
   }
   return true;
@@ -441,15 +778,18 @@ bool SupernodalLDLT::Factorize(const SparseMatrix& A)
 DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
 {
   DenseMatrix X(B.rows(), B.cols());
-  const Eigen::Index half = B.cols() / 2;
-  if (half == 0 || this->Size < 2000)
-  {
-    this->SolveColumns(B, X, 0, B.cols());
-    return X;
-  }
-  std::thread helper([this, &B, &X, half]() { this->SolveColumns(B, X, 0, half); });
-  this->SolveColumns(B, X, half, B.cols() - half);
-  helper.join();
+  // Contiguous ranges of at least 4 columns a thread, each solved MaxWidth columns at a time.
+  const int threads = this->Size < ParallelRows ? 1 : ResolveThreads(this->Threads);
+  const int parts = static_cast<int>(std::min<Eigen::Index>(threads, (B.cols() + 3) / 4));
+  ForEachRowRange(B.cols(),
+    parts,
+    [this, &B, &X](int, Eigen::Index first, Eigen::Index count)
+    {
+      if (count > 0)
+      {
+        this->SolveColumns(B, X, first, count);
+      }
+    });
   return X;
 }
 

@@ -16,6 +16,15 @@
  * Solves take a block of right-hand sides at once, stored row by row, so that reading the
  * factor is shared by all of them and every update of a row is a short vector operation.
  *
+ * Threads (SetThreads, the count as in Common/Threads.h): Factorize factors the supernodes of
+ * disjoint subtrees of the supernodal elimination tree at the same time, then the separators
+ * above them as soon as their children are done. Left-looking, a supernode is written only by
+ * the thread that factors it, and it takes the updates of its descendants in one fixed order
+ * (recorded by the symbolic analysis), so the factor and the pivots are bitwise the same on any
+ * number of threads. Solve splits its right-hand sides over the threads.
+ *
+ * Tested by Testing/Core/TestSupernodalLDLT.cxx.
+ *
  * Reference for the structure: T. A. Davis, "Direct Methods for Sparse Linear Systems", SIAM
  * 2006, chapter 4; Y. Chen, T. A. Davis, W. W. Hager, S. Rajamanickam, "Algorithm 887:
  * CHOLMOD, Supernodal Sparse Cholesky Factorization and Update/Downdate", ACM TOMS 35(3), 2008.
@@ -26,6 +35,7 @@
 #include "Common/Mesh.h"
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace spectral
@@ -42,10 +52,21 @@ public:
   explicit SupernodalLDLT(const SparseMatrix& pattern);
 
   /**
+   * Threads of Factorize and Solve: >= 1 as is, 0 (default) every core (ResolveThreads in
+   * Common/Threads.h). Matrices of fewer than 2000 rows use one. The results do not depend on
+   * it: the factor bitwise, solves up to rounding (the right-hand sides go to kernels of
+   * different widths).
+   */
+  void SetThreads(int threads) { this->Threads = threads; }
+  int GetThreads() const { return this->Threads; }
+
+  /**
    * Numeric factorization P A P^T = L D L^T (L unit lower triangular, D diagonal, no pivoting).
    * Only the lower triangle of A is read.
    * \return false if a pivot is zero or not finite (A is singular to working precision, or
-   *         unpivoted elimination broke down); the factor is then unusable.
+   *         unpivoted elimination broke down), on whichever thread it happens; the factor is
+   *         then unusable.
+   * \throws What a thread threw (std::bad_alloc), after every thread has stopped.
    */
   bool Factorize(const SparseMatrix& A);
 
@@ -54,8 +75,8 @@ public:
   int NegativePivots() const { return this->Negative; }
 
   /**
-   * X = A^-1 B for the last factored A. The columns of B are split over two threads when there
-   * are enough of them.
+   * X = A^-1 B for the last factored A. The columns of B are split over the threads, at least
+   * 4 columns a thread (one SIMD-wide kernel).
    */
   DenseMatrix Solve(const Eigen::Ref<const DenseMatrix>& B) const;
 
@@ -77,6 +98,26 @@ private:
     const double* Values;
   };
   Node Supernode(int s) const;
+
+  /// Record the updates of the left-looking sweep (Updates), the elimination tree (Parent) and
+  /// the work of its subtrees (SubtreeWork) from the symbolic structure.
+  void ScheduleUpdates();
+
+  /// The scratch space of one thread of Factorize (defined in the .cxx).
+  struct Workspace;
+
+  /// Factor supernode s in place, its descendants done: false on a zero or non-finite pivot.
+  /// \param negative incremented by the number of negative pivots.
+  bool FactorSupernode(int s, Workspace& work, int& negative);
+
+  /// Factorize's supernodes on `threads` threads, each task of the tree after its children.
+  bool FactorOnThreads(int threads);
+
+  /// Factor the supernodes [first, last) in order with the workspace `work` (made if null).
+  bool FactorTask(const int* first,
+    const int* last,
+    std::unique_ptr<Workspace>& work,
+    int& negative);
 
   /// Solve columns [first, first + count) of B into X.
   void SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
@@ -108,9 +149,26 @@ private:
   std::vector<double> Values;
   /// Supernode of each column.
   std::vector<int> SupernodeOf;
+  /// Update from descendant supernode Descendant to supernode s: the descendant's rows [Begin,
+  /// End) (positions among its rows) are columns of s, and its rows from Begin on are updated.
+  struct Update
+  {
+    int Descendant;
+    int Begin;
+    int End;
+  };
+  /// The updates to supernode s, Updates[UpdateStart[s] .. UpdateStart[s+1]), in the order of
+  /// the serial left-looking sweep (the order is part of the floating-point result).
+  std::vector<int> UpdateStart;
+  std::vector<Update> Updates;
+  /// Parent of each supernode in the supernodal elimination tree, -1 at a root.
+  std::vector<int> Parent;
+  /// Estimated floating-point operations of the subtree rooted at each supernode.
+  std::vector<double> SubtreeWork;
   /// The permuted lower triangle, re-filled by each Factorize.
   SparseMatrix Permuted;
   int Negative = 0;
+  int Threads = 0;
 };
 } // namespace spectral
 
