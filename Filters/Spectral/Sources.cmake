@@ -10,6 +10,7 @@ set(spectral_core_sources
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx
   Solver/EigenSolver.cxx
+  Solver/Bands.cxx
   Solver/SupernodalLDLT.cxx
   Solver/BlockProducts.cxx
   Solver/Memory.cxx
@@ -22,6 +23,7 @@ set(spectral_core_headers
   Operators/Operators.h
   Operators/IntrinsicDelaunay.h
   Solver/EigenSolver.h
+  Solver/Bands.h
   Solver/SupernodalLDLT.h
   Solver/BlockProducts.h
   Solver/Memory.h

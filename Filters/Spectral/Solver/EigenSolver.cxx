@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/EigenSolver.h"
 #include "Solver/BlockProducts.h"
-#include "Solver/Memory.h"
+#include "Solver/Bands.h"
 #include "Solver/SupernodalLDLT.h"
 #include "Common/Threads.h"
 

@@ -49,8 +49,7 @@ struct EigenOptions
 {
   /// m, the number of eigenpairs wanted (1 <= m <= n).
   int NumberOfEigenpairs = 100;
-  /// Eigenpairs requested per band; 0 chooses automatically (EffectiveBandSize in Memory.h: one
-  /// band up to m = 120, else bands of 100).
+  /// Eigenpairs requested per band; 0 chooses automatically (the band policy of Bands.h).
   int BandSize = 0;
   /// Relative convergence tolerance of the Lanczos iteration within a band.
   double Tolerance = 1e-11;
