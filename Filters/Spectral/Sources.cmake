@@ -11,6 +11,8 @@ set(spectral_core_sources
   Operators/IntrinsicDelaunay.cxx
   Solver/EigenSolver.cxx
   Solver/Bands.cxx
+  Solver/Factorization.cxx
+  Solver/Verification.cxx
   Solver/SupernodalLDLT.cxx
   Solver/BlockProducts.cxx
   Solver/Memory.cxx
@@ -24,6 +26,9 @@ set(spectral_core_headers
   Operators/IntrinsicDelaunay.h
   Solver/EigenSolver.h
   Solver/Bands.h
+  Solver/Factorization.h
+  Solver/Verification.h
+  Solver/Diagnostics.h
   Solver/SupernodalLDLT.h
   Solver/BlockProducts.h
   Solver/Memory.h

@@ -1,12 +1,13 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/EigenSolver.h"
-#include "Solver/BlockProducts.h"
-#include "Solver/Bands.h"
-#include "Solver/SupernodalLDLT.h"
 #include "Common/Threads.h"
+#include "Solver/Bands.h"
+#include "Solver/BlockProducts.h"
+#include "Solver/Diagnostics.h"
+#include "Solver/Factorization.h"
+#include "Solver/Verification.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
 #include <Spectra/SymGEigsShiftSolver.h>
 
@@ -25,119 +26,11 @@ namespace spectral
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string Str(double value)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
-  return buffer;
-}
-
-/**
- * CHOLMOD's simplicial LDL^T (FactorizationMethod::Simplicial): one column at a time, the
- * reference that the supernodal factorization is tested against.
- */
-class SimplicialFactor : public Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>
-{
-public:
-  explicit SimplicialFactor(const SparseMatrix& pattern) { this->analyzePattern(pattern); }
-  SimplicialFactor(const SimplicialFactor&) = delete;
-  SimplicialFactor& operator=(const SimplicialFactor&) = delete;
-
-  /// Factor A. Returns false if a pivot is zero or not finite.
-  bool Factorize(const SparseMatrix& A)
-  {
-    this->factorize(A);
-    if (this->info() != Eigen::Success)
-    {
-      return false;
-    }
-    const cholmod_factor* f = this->m_cholmodFactor;
-    const int* p = static_cast<const int*>(f->p);
-    const double* x = static_cast<const double*>(f->x);
-    this->Negative = 0;
-    for (std::size_t j = 0; j < f->n; ++j)
-    {
-      const double pivot = x[p[j]];
-      if (!std::isfinite(pivot) || pivot == 0.0)
-      {
-        return false;
-      }
-      this->Negative += (pivot < 0.0) ? 1 : 0;
-    }
-    return true;
-  }
-
-  /// Number of negative pivots of the last factorization.
-  int NegativePivots() const { return this->Negative; }
-
-  /// X = A^-1 B with Eigen's solve on CHOLMOD's factor.
-  DenseMatrix SolveBlock(const Eigen::Ref<const DenseMatrix>& B) const { return this->solve(B); }
-
-private:
-  int Negative = 0;
-};
-
-/**
- * The factorization of L - sigma M for a sequence of shifts. The pattern of L + M is analysed
- * once (fill-reducing ordering, symbolic factor); each shift reuses that analysis. The pivots
- * give the inertia of L - sigma M: the number of eigenvalues below sigma.
- */
-class ShiftedFactor
-{
-public:
-  ShiftedFactor(const SparseMatrix& L, const SparseMatrix& M, FactorizationMethod method)
-    : StiffnessMatrix(L)
-    , MassMatrix(M)
-  {
-    const SparseMatrix pattern = L + M;
-    if (method == FactorizationMethod::Simplicial)
-    {
-      this->Simplicial.reset(new SimplicialFactor(pattern));
-    }
-    else
-    {
-      this->Supernodal.reset(new SupernodalLDLT(pattern));
-    }
-  }
-
-  /// Factor L - sigma M. Returns false if a pivot is zero or not finite.
-  bool Factor(double sigma)
-  {
-    this->Shifted = this->StiffnessMatrix - sigma * this->MassMatrix;
-    return this->Supernodal ? this->Supernodal->Factorize(this->Shifted)
-                            : this->Simplicial->Factorize(this->Shifted);
-  }
-
-  /// Number of negative pivots of the last factorization: eigenvalues below its shift.
-  int NegativePivots() const
-  {
-    return this->Supernodal ? this->Supernodal->NegativePivots()
-                            : this->Simplicial->NegativePivots();
-  }
-
-  /// L - sigma M of the last factorization.
-  const SparseMatrix& ShiftedMatrix() const { return this->Shifted; }
-
-  /// X = (L - sigma M)^-1 B for a block of right-hand sides.
-  DenseMatrix SolveBlock(const Eigen::Ref<const DenseMatrix>& B) const
-  {
-    return this->Supernodal ? this->Supernodal->Solve(B) : this->Simplicial->SolveBlock(B);
-  }
-
-private:
-  const SparseMatrix& StiffnessMatrix;
-  const SparseMatrix& MassMatrix;
-  SparseMatrix Shifted;
-  std::unique_ptr<SupernodalLDLT> Supernodal;
-  std::unique_ptr<SimplicialFactor> Simplicial;
-};
+using detail::Clock;
+using detail::SecondsSince;
+using detail::ShiftedFactor;
+using detail::Str;
+using detail::Verify;
 
 /// Spectra operation y = (L - sigma M)^-1 x on a ShiftedFactor; polls for cancellation.
 class ShiftInvertOp
@@ -506,47 +399,6 @@ Vector RayleighQuotients(const Eigen::Ref<const DenseMatrix>& X,
     out[k] = X.col(k).dot(AX.col(k)) / X.col(k).dot(MX.col(k));
   }
   return out;
-}
-
-/**
- * Check the true residuals of Ritz pairs (x_k, sigma + shifted_k), given AX = (L - sigma M) X and
- * MX = M X: sets `nearest` to the pairs ordered by distance from the shift and returns how many
- * of the first of them have a relative residual (D^-1 norm, relative to
- * max(|lambda|, reference)) within `tolerance`.
- */
-int Verify(const Eigen::Ref<const DenseMatrix>& AX,
-  const Eigen::Ref<const DenseMatrix>& MX,
-  const Vector& shifted,
-  const Vector& inverseMass,
-  double sigma,
-  double reference,
-  double tolerance,
-  std::vector<Eigen::Index>& nearest)
-{
-  const Eigen::Index count = shifted.size();
-  nearest.resize(static_cast<std::size_t>(count));
-  for (Eigen::Index i = 0; i < count; ++i)
-  {
-    nearest[static_cast<std::size_t>(i)] = i;
-  }
-  std::sort(nearest.begin(),
-    nearest.end(),
-    [&shifted](Eigen::Index a, Eigen::Index c)
-    { return std::abs(shifted[a]) < std::abs(shifted[c]); });
-  int verified = 0;
-  while (verified < count)
-  {
-    const Eigen::Index k = nearest[static_cast<std::size_t>(verified)];
-    const double lambda = sigma + shifted[k];
-    const double residual =
-      std::sqrt((AX.col(k) - shifted[k] * MX.col(k)).cwiseAbs2().dot(inverseMass));
-    if (residual > tolerance * std::max(std::abs(lambda), reference))
-    {
-      break;
-    }
-    ++verified;
-  }
-  return verified;
 }
 
 /**
@@ -1370,95 +1222,8 @@ EigenResult SmallestEigenpairs(
     }
   }
   NormalizeSigns(result.Eigenvectors);
-
-  const Clock::time_point start = Clock::now();
-  const Vector residuals = RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors);
-  result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
-  result.Seconds.Verification += SecondsSince(start);
-  if (!(result.MaxResidual <= options.ResidualTolerance))
-  {
-    Eigen::Index worst = 0;
-    residuals.maxCoeff(&worst);
-    throw SolverFailure("eigenpair " + std::to_string(worst) + " (lambda = " +
-        Str(result.Eigenvalues[worst]) + ") has relative residual " + Str(result.MaxResidual) +
-        ", above the tolerance " + Str(options.ResidualTolerance),
-      m);
-  }
+  detail::CheckResiduals(L, M, options.ResidualTolerance, result);
   monitor.Report(1.0);
   return result;
-}
-
-//------------------------------------------------------------------------------
-Vector RelativeResiduals(
-  const SparseMatrix& L, const SparseMatrix& M, const Vector& lambda, const DenseMatrix& Phi)
-{
-  const Vector rowSums = M * Vector::Ones(M.cols());
-  const Vector inverseMass = rowSums.cwiseInverse();
-  const double top = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
-  double reference = top;
-  for (Eigen::Index k = 0; k < lambda.size(); ++k)
-  {
-    if (std::abs(lambda[k]) > 1e-6 * top)
-    {
-      reference = std::min(reference, std::abs(lambda[k]));
-    }
-  }
-  // Without a non-zero eigenvalue among the pairs (m = 1, or only the constants of components),
-  // fall back to a small fraction of the operator's scale, the ratio of the traces.
-  const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
-  reference = std::max(reference, 1e-6 * traceRatio);
-  // A block of columns at a time: the residuals of all m pairs at once would take twice the
-  // memory of the basis. Two threads take half of the columns each (the sparse products are
-  // single-threaded), each with its own two blocks.
-  Vector out(lambda.size());
-  const Eigen::Index block = 32;
-  ForEachRowRange(lambda.size(),
-    BlockThreads(Phi.rows()),
-    [&](int, Eigen::Index begin, Eigen::Index columns)
-    {
-      DenseMatrix R(Phi.rows(), std::min(block, columns));
-      DenseMatrix MPhi(Phi.rows(), R.cols());
-      for (Eigen::Index first = begin; first < begin + columns; first += block)
-      {
-        const Eigen::Index count = std::min(block, begin + columns - first);
-        const auto part = Phi.middleCols(first, count);
-        R.leftCols(count).noalias() = L * part;
-        MPhi.leftCols(count).noalias() = M * part;
-        R.leftCols(count) -= MPhi.leftCols(count) * lambda.segment(first, count).asDiagonal();
-        for (Eigen::Index j = 0; j < count; ++j)
-        {
-          const Eigen::Index k = first + j;
-          const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
-          out[k] =
-            norm / std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
-        }
-      }
-    });
-  return out;
-}
-
-//------------------------------------------------------------------------------
-double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
-{
-  // M Phi a block of columns at a time, not a second copy of the basis.
-  DenseMatrix G(Phi.cols(), Phi.cols());
-  const Eigen::Index block = 64;
-  for (Eigen::Index first = 0; first < Phi.cols(); first += block)
-  {
-    const Eigen::Index count = std::min(block, Phi.cols() - first);
-    G.middleCols(first, count).noalias() = Phi.transpose() * (M * Phi.middleCols(first, count));
-  }
-  return (G - DenseMatrix::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
-}
-
-//------------------------------------------------------------------------------
-int CountEigenvaluesBelow(const SparseMatrix& L, const SparseMatrix& M, double sigma)
-{
-  ShiftedFactor factor(L, M, FactorizationMethod::Supernodal);
-  if (!factor.Factor(sigma))
-  {
-    throw SolverFailure("the LDL^T factorization of L - sigma M failed at shift " + Str(sigma));
-  }
-  return factor.NegativePivots();
 }
 } // namespace spectral
