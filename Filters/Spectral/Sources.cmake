@@ -11,6 +11,9 @@ set(spectral_core_sources
   Operators/IntrinsicDelaunay.cxx
   Solver/EigenSolver.cxx
   Solver/Bands.cxx
+  Solver/BlockLanczos.cxx
+  Solver/SpectraBand.cxx
+  Solver/LanczosKernels.cxx
   Solver/Factorization.cxx
   Solver/Verification.cxx
   Solver/SupernodalLDLT.cxx
@@ -26,6 +29,11 @@ set(spectral_core_headers
   Operators/IntrinsicDelaunay.h
   Solver/EigenSolver.h
   Solver/Bands.h
+  Solver/BlockLanczos.h
+  Solver/SpectraBand.h
+  Solver/BandWorkspace.h
+  Solver/LanczosKernels.h
+  Solver/MassMatrix.h
   Solver/Factorization.h
   Solver/Verification.h
   Solver/Diagnostics.h
