@@ -14,6 +14,12 @@ set(spectral_core_sources
   Operators/IntrinsicDelaunay.cxx
   Solver/Components.cxx
   Solver/EigenSolver.cxx
+  Solver/Bands.cxx
+  Solver/BlockLanczos.cxx
+  Solver/SpectraBand.cxx
+  Solver/LanczosKernels.cxx
+  Solver/Factorization.cxx
+  Solver/Verification.cxx
   Solver/SupernodalLDLT.cxx
   Solver/BlockProducts.cxx
   Solver/Memory.cxx
@@ -32,6 +38,15 @@ set(spectral_core_headers
   Operators/IntrinsicDelaunay.h
   Solver/Components.h
   Solver/EigenSolver.h
+  Solver/Bands.h
+  Solver/BlockLanczos.h
+  Solver/SpectraBand.h
+  Solver/BandWorkspace.h
+  Solver/LanczosKernels.h
+  Solver/MassMatrix.h
+  Solver/Factorization.h
+  Solver/Verification.h
+  Solver/Diagnostics.h
   Solver/SupernodalLDLT.h
   Solver/BlockProducts.h
   Solver/Memory.h

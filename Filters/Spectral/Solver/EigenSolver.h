@@ -16,6 +16,8 @@
  * problem D^-1/2 L D^-1/2 y = lambda y, with y = D^1/2 h, where the inner product needs no
  * product with M.
  *
+ * The parts of the solver and where they live are listed at the top of EigenSolver.cxx.
+ *
  * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestEigenSolver.cxx.
  */
 #ifndef spectral_EigenSolver_h
@@ -49,8 +51,7 @@ struct EigenOptions
 {
   /// m, the number of eigenpairs wanted (1 <= m <= n).
   int NumberOfEigenpairs = 100;
-  /// Eigenpairs requested per band; 0 chooses automatically (EffectiveBandSize in Memory.h: one
-  /// band up to m = 120, else bands of 100).
+  /// Eigenpairs requested per band; 0 chooses automatically (the band policy of Bands.h).
   int BandSize = 0;
   /// Relative convergence tolerance of the Lanczos iteration within a band.
   double Tolerance = 1e-11;
@@ -115,8 +116,10 @@ struct EigenResult
  *         disagrees with the eigenvalues found, or a residual exceeds ResidualTolerance.
  * \throws Cancelled if monitor.Cancelled returned true.
  */
-EigenResult SmallestEigenpairs(const SparseMatrix& L, const SparseMatrix& M,
-  const EigenOptions& options, const Monitor& monitor = Monitor());
+EigenResult SmallestEigenpairs(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const EigenOptions& options,
+  const Monitor& monitor = Monitor());
 
 /**
  * Relative residuals of eigenpairs: for each k,
@@ -125,15 +128,17 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L, const SparseMatrix& M,
  * frequency), so that zero eigenvalues are measured against the scale of the spectrum; it is at
  * least 1e-6 trace(L) / trace(M), which only matters when no non-zero eigenvalue is returned.
  */
-Vector RelativeResiduals(
-  const SparseMatrix& L, const SparseMatrix& M, const Vector& lambda, const DenseMatrix& Phi);
+Vector RelativeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi);
 
-/// max |Phi^T M Phi - I| over all entries.
+/// max |Phi^T M Phi - I| over all entries. (RelativeResiduals and this: Verification.cxx.)
 double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M);
 
 /**
  * Number of eigenvalues of L h = lambda M h below sigma, from the inertia of an LDL^T
- * factorization of L - sigma M (Sylvester's law of inertia).
+ * factorization of L - sigma M (Sylvester's law of inertia; Factorization.h).
  * \throws SolverFailure if the factorization fails (sigma is an eigenvalue).
  */
 int CountEigenvaluesBelow(const SparseMatrix& L, const SparseMatrix& M, double sigma);

@@ -18,7 +18,9 @@
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
  *                               (an 8-byte value and a 4-byte row index)
  *
- * with k the band size (the automatic band size of the eigensolver is m clamped to [50, 100]).
+ * with k = EffectiveBandSize(m, bandSize), the eigensolver's band size (the band policy is
+ * documented once, in Bands.h; a band size set by hand above SingleBandSize(m) makes the
+ * estimate high, since no band asks for more).
  * It is an estimate, not a bound: it leaves out the mesh and the sparse operators, which are
  * small beside these terms (a few hundred bytes a point), and the fill-in of the factor depends
  * on the mesh. On the 100,045-point torus of bench/ManifoldHarmonicsBench with m = 500 it gives
@@ -29,6 +31,8 @@
  */
 #ifndef spectral_Memory_h
 #define spectral_Memory_h
+
+#include "Solver/Bands.h" // EffectiveBandSize, the k of the estimate
 
 #include <cstdint>
 
@@ -54,25 +58,11 @@ struct MemoryEstimate
 };
 
 /**
- * The pairs a single band asks for when it must return all m: m + m / 4 + 10 (its edges are
- * left to the final inertia check). No band asks for more.
- */
-int SingleBandSize(int m);
-
-/**
- * The band size the eigensolver uses when asked for 0 (automatic): one band of SingleBandSize(m)
- * pairs while that is at most 160 (m <= 120), else bands of 100.
- * \param m Number of harmonics.
- * \param bandSize The requested band size; > 0 is returned as is.
- */
-int EffectiveBandSize(int m, int bandSize);
-
-/**
  * Estimate the memory of computing an n by m basis (see the file documentation for the formula).
  * \param n Points of the output (rows of the basis array).
  * \param nUsed Points that triangles use (unknowns of the eigenproblem), <= n.
  * \param m Number of harmonics.
- * \param bandSize Eigenpairs per band; 0 for the eigensolver's automatic choice.
+ * \param bandSize Eigenpairs per band (EigenOptions::BandSize); 0 for the automatic choice.
  * \param bytesPerValue Size of one value of the output basis: 8 (double) or 4 (float).
  * \return The terms of the estimate.
  */

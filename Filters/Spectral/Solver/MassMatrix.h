@@ -1,0 +1,50 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file MassMatrix.h
+ * @brief The mass matrix of the pencil (L, M) as the band iterations see it: a sparse matrix,
+ *        or the identity once SmallestEigenpairs has scaled a diagonal (lumped) mass away.
+ *
+ * Used by Bands, BlockLanczos, SpectraBand and LanczosKernels; both cases are tested by
+ * Testing/Core/TestEigenSolver.cxx (SphereSpectrum: lumped; SphereConsistentMass: consistent).
+ */
+#ifndef spectral_MassMatrix_h
+#define spectral_MassMatrix_h
+
+#include "Common/Mesh.h"
+
+namespace spectral
+{
+namespace detail
+{
+/**
+ * The mass matrix of the pencil in the products of the block iteration. A positive diagonal mass
+ * (the lumped one) is scaled away before the iteration (SmallestEigenpairs): the pencil becomes
+ * (D^-1/2 L D^-1/2, I), and Identity skips every product with it.
+ */
+struct MassMatrix
+{
+  /// n by n; the sparse identity when Identity is set.
+  const SparseMatrix& Matrix;
+  bool Identity;
+
+  /// M W in `out`; W itself (no copy) for the identity.
+  const DenseMatrix& Times(const DenseMatrix& W, DenseMatrix& out) const
+  {
+    if (this->Identity)
+    {
+      return W;
+    }
+    out.noalias() = this->Matrix * W;
+    return out;
+  }
+
+  /// Not for blocks or expressions: they would bind to a temporary copy, which the identity
+  /// case would return.
+  template<typename Other>
+  const DenseMatrix& Times(const Other& W, DenseMatrix& out) const = delete;
+};
+} // namespace detail
+} // namespace spectral
+
+#endif

@@ -1,0 +1,139 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Solver/Verification.h"
+#include "Common/Threads.h"
+#include "Solver/BlockProducts.h"
+#include "Solver/Diagnostics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace spectral
+{
+namespace detail
+{
+//------------------------------------------------------------------------------
+int Verify(const Eigen::Ref<const DenseMatrix>& AX,
+  const Eigen::Ref<const DenseMatrix>& MX,
+  const Vector& shifted,
+  const Vector& inverseMass,
+  double sigma,
+  double reference,
+  double tolerance,
+  std::vector<Eigen::Index>& nearest)
+{
+  const Eigen::Index count = shifted.size();
+  nearest.resize(static_cast<std::size_t>(count));
+  for (Eigen::Index i = 0; i < count; ++i)
+  {
+    nearest[static_cast<std::size_t>(i)] = i;
+  }
+  std::sort(nearest.begin(),
+    nearest.end(),
+    [&shifted](Eigen::Index a, Eigen::Index c)
+    { return std::abs(shifted[a]) < std::abs(shifted[c]); });
+  int verified = 0;
+  while (verified < count)
+  {
+    const Eigen::Index k = nearest[static_cast<std::size_t>(verified)];
+    const double lambda = sigma + shifted[k];
+    const double residual =
+      std::sqrt((AX.col(k) - shifted[k] * MX.col(k)).cwiseAbs2().dot(inverseMass));
+    if (residual > tolerance * std::max(std::abs(lambda), reference))
+    {
+      break;
+    }
+    ++verified;
+  }
+  return verified;
+}
+
+//------------------------------------------------------------------------------
+void CheckResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  double tolerance,
+  EigenResult& result)
+{
+  const Clock::time_point start = Clock::now();
+  const Vector residuals = RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors);
+  result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
+  result.Seconds.Verification += SecondsSince(start);
+  if (!(result.MaxResidual <= tolerance))
+  {
+    Eigen::Index worst = 0;
+    residuals.maxCoeff(&worst);
+    throw SolverFailure("eigenpair " + std::to_string(worst) +
+        " (lambda = " + Str(result.Eigenvalues[worst]) + ") has relative residual " +
+        Str(result.MaxResidual) + ", above the tolerance " + Str(tolerance),
+      static_cast<int>(result.Eigenvalues.size()));
+  }
+}
+} // namespace detail
+
+//------------------------------------------------------------------------------
+Vector RelativeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi)
+{
+  const Vector rowSums = M * Vector::Ones(M.cols());
+  const Vector inverseMass = rowSums.cwiseInverse();
+  const double top = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  double reference = top;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    if (std::abs(lambda[k]) > 1e-6 * top)
+    {
+      reference = std::min(reference, std::abs(lambda[k]));
+    }
+  }
+  // Without a non-zero eigenvalue among the pairs (m = 1, or only the constants of components),
+  // fall back to a small fraction of the operator's scale, the ratio of the traces.
+  const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
+  reference = std::max(reference, 1e-6 * traceRatio);
+  // A block of columns at a time: the residuals of all m pairs at once would take twice the
+  // memory of the basis. Two threads take half of the columns each (the sparse products are
+  // single-threaded), each with its own two blocks.
+  Vector out(lambda.size());
+  const Eigen::Index block = 32;
+  ForEachRowRange(lambda.size(),
+    BlockThreads(Phi.rows()),
+    [&](int, Eigen::Index begin, Eigen::Index columns)
+    {
+      DenseMatrix R(Phi.rows(), std::min(block, columns));
+      DenseMatrix MPhi(Phi.rows(), R.cols());
+      for (Eigen::Index first = begin; first < begin + columns; first += block)
+      {
+        const Eigen::Index count = std::min(block, begin + columns - first);
+        const auto part = Phi.middleCols(first, count);
+        R.leftCols(count).noalias() = L * part;
+        MPhi.leftCols(count).noalias() = M * part;
+        R.leftCols(count) -= MPhi.leftCols(count) * lambda.segment(first, count).asDiagonal();
+        for (Eigen::Index j = 0; j < count; ++j)
+        {
+          const Eigen::Index k = first + j;
+          const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
+          out[k] =
+            norm / std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
+        }
+      }
+    });
+  return out;
+}
+
+//------------------------------------------------------------------------------
+double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
+{
+  // M Phi a block of columns at a time, not a second copy of the basis.
+  DenseMatrix G(Phi.cols(), Phi.cols());
+  const Eigen::Index block = 64;
+  for (Eigen::Index first = 0; first < Phi.cols(); first += block)
+  {
+    const Eigen::Index count = std::min(block, Phi.cols() - first);
+    G.middleCols(first, count).noalias() = Phi.transpose() * (M * Phi.middleCols(first, count));
+  }
+  return (G - DenseMatrix::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
+}
+} // namespace spectral
