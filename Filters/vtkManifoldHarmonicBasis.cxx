@@ -303,6 +303,7 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.Solver.Tolerance = self->GetTolerance();
   options.Solver.MaxIterations = self->GetMaxIterations();
   options.MinimumComponentSize = self->GetMinimumComponentSize();
+  options.Solver.Threads = self->GetNumberOfThreads();
   options.BytesPerValue = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT ? 4 : 8;
   // A limit below one byte still limits (0 would mean "ask the system").
   options.MemoryLimit = self->GetMemoryLimit() > 0.0

@@ -15,13 +15,17 @@
  * same core call as vtkSpectralFilter (spectral::FilterSignal), on 1 and 2 threads, with the
  * basis in double and in float (BasisPrecision).
  *
- * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--filter] [--scipy]
- *        [--scipy-max-n N] [--workdir DIR]
+ * With --scan the torus carries the defects of a real range scan (near-coincident points,
+ * needles, zero-area triangles, islands; see CaseMesh). --threads T sets the eigensolver's
+ * threads (default 0: every core).
+ *
+ * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--threads T] [--filter]
+ *        [--scipy] [--scipy-max-n N] [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
-#include "Meshes.h"
 #include "Basis.h"
 #include "Filtering/Transfer.h"
+#include "Meshes.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -49,6 +53,10 @@ struct Settings
   bool Scipy = false;
   bool Filter = false;
   int ScipyMaxN = 200000;
+  /// The torus with the defects of a range scan (ScanMesh).
+  bool Scan = false;
+  /// Threads of the eigensolver; 0 = every core.
+  int Threads = 0;
   std::string WorkDir = "/tmp";
   std::string ScriptDir = ".";
 };
@@ -86,15 +94,17 @@ void WriteMatrixMarket(const spectral::SparseMatrix& A, const std::string& path)
 }
 
 /// Solve with scipy; returns the wall time of eigsh (negative on failure) and fills lambda.
-double RunScipy(const Settings& settings, const spectral::SparseMatrix& L,
-  const spectral::SparseMatrix& M, int m, std::vector<double>& lambda)
+double RunScipy(const Settings& settings,
+  const spectral::SparseMatrix& L,
+  const spectral::SparseMatrix& M,
+  int m,
+  std::vector<double>& lambda)
 {
   const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
   WriteMatrixMarket(L, base + "-L.mtx");
   WriteMatrixMarket(M, base + "-M.mtx");
-  const std::string command = "/usr/bin/python3 " + settings.ScriptDir +
-    "/scipy_reference.py " + base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " " +
-    base + "-out.txt";
+  const std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/scipy_reference.py " +
+    base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " " + base + "-out.txt";
   const int status = std::system(command.c_str());
   std::remove((base + "-L.mtx").c_str());
   std::remove((base + "-M.mtx").c_str());
@@ -122,10 +132,14 @@ double RunScipy(const Settings& settings, const spectral::SparseMatrix& L,
  * place, stored point by point (n by m, row-major) as the VTK array holds it.
  * Not timed: the VTK side (shallow copies, wrapping the arrays, writing the output array).
  */
-template <typename View>
-double FilterStageMilliseconds(const View& H, const spectral::TriangleMesh& mesh,
-  const spectral::Vector& lambda, const spectral::Vector& mass, const spectral::RowMatrix& points,
-  const spectral::RowMatrix& coefficients, int threads)
+template<typename View>
+double FilterStageMilliseconds(const View& H,
+  const spectral::TriangleMesh& mesh,
+  const spectral::Vector& lambda,
+  const spectral::Vector& mass,
+  const spectral::RowMatrix& points,
+  const spectral::RowMatrix& coefficients,
+  int threads)
 {
   spectral::FilterParameters parameters;
   parameters.Kind = spectral::FilterKind::LowPass;
@@ -141,8 +155,7 @@ double FilterStageMilliseconds(const View& H, const spectral::TriangleMesh& mesh
     const spectral::Vector gains = spectral::Gains(parameters, lambda);
     const double hf =
       spectral::MeanGain(parameters, std::sqrt(std::max(lambda.maxCoeff(), 0.0)), nyquist);
-    const spectral::RowMatrix filtered =
-      spectral::FilterSignal(H, mass, gains, C, X, hf, threads);
+    const spectral::RowMatrix filtered = spectral::FilterSignal(H, mass, gains, C, X, hf, threads);
     samples.push_back(1000.0 * Since(start));
     checksum += filtered(0, 0);
   }
@@ -156,7 +169,8 @@ double FilterStageMilliseconds(const View& H, const spectral::TriangleMesh& mesh
 
 /// The filter-stage column: 1 and 2 threads, on the double basis and on its float copy.
 std::string FilterStageColumn(const spectral::TriangleMesh& mesh,
-  const spectral::EigenResult& result, const spectral::Vector& mass)
+  const spectral::EigenResult& result,
+  const spectral::Vector& mass)
 {
   const spectral::RowMatrix basis = result.Eigenvectors;
   const spectral::BasisView H(basis.data(), basis.rows(), basis.cols());
@@ -174,21 +188,46 @@ std::string FilterStageColumn(const spectral::TriangleMesh& mesh,
   const double float2 =
     FilterStageMilliseconds(Hf, mesh, result.Eigenvalues, mass, points, coefficients, 2);
   char buffer[160];
-  std::snprintf(buffer, sizeof(buffer),
+  std::snprintf(buffer,
+    sizeof(buffer),
     "  filter %.1f ms (1 thread) %.1f ms (2 threads), float basis %.1f ms (1) %.1f ms (2)",
-    double1, double2, float1, float2);
+    double1,
+    double2,
+    float1,
+    float2);
   return buffer;
+}
+
+/**
+ * The mesh of a case: a noisy torus of about n points or, with --scan, the same torus with the
+ * defects of a range scan in the proportions of a 437,000-point scan: a near-coincident point
+ * and a needle every 1,000 points, 108 zero-area triangles and 150 islands of 3 to 80 points.
+ */
+spectral::TriangleMesh CaseMesh(const Settings& settings, int n)
+{
+  const spectral::TriangleMesh torus = spectral::testing::NoisyTorusOfSize(n, 0.02);
+  if (!settings.Scan)
+  {
+    return torus;
+  }
+  spectral::testing::ScanDefects defects;
+  defects.NearCoincident = n / 1000;
+  defects.Needles = n / 1000;
+  defects.ZeroArea = 108;
+  defects.Islands = 150;
+  return spectral::testing::WithScanDefects(torus, defects);
 }
 
 /// One case, run in the child process. Prints its row and returns an exit code.
 int RunCase(const Settings& settings, int n, int m)
 {
-  const spectral::TriangleMesh mesh = spectral::testing::NoisyTorusOfSize(n, 0.02);
+  const spectral::TriangleMesh mesh = CaseMesh(settings, n);
   const Clock::time_point start = Clock::now();
   // What vtkManifoldHarmonicBasis runs: the core's one entry point.
   spectral::BasisOptions options;
   options.NumberOfHarmonics = m;
   options.Solver.BandSize = settings.BandSize;
+  options.Solver.Threads = settings.Threads;
   spectral::BasisResult basis;
   try
   {
@@ -231,8 +270,12 @@ int RunCase(const Settings& settings, int n, int m)
             std::max(std::abs(reference[k]), result.Eigenvalues[m - 1] * 1e-6));
       }
       char buffer[160];
-      std::snprintf(buffer, sizeof(buffer), "  scipy %8.1f s  x%5.1f  max|dlambda|/lambda %.1e",
-        seconds, seconds / total, difference);
+      std::snprintf(buffer,
+        sizeof(buffer),
+        "  scipy %8.1f s  x%5.1f  max|dlambda|/lambda %.1e",
+        seconds,
+        seconds / total,
+        difference);
       scipy = buffer;
     }
     else
@@ -242,10 +285,20 @@ int RunCase(const Settings& settings, int n, int m)
   }
 
   std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e%s\n",
-    static_cast<int>(L.rows()), m, total, assembly, result.Seconds.Factorization,
-    result.Seconds.Solve, result.Seconds.Orthogonalization, result.Seconds.RayleighRitz,
-    result.Seconds.Verification, result.Bands, result.OperatorApplications, result.MaxResidual,
-    orthogonality, (filter + scipy).c_str());
+    static_cast<int>(L.rows()),
+    m,
+    total,
+    assembly,
+    result.Seconds.Factorization,
+    result.Seconds.Solve,
+    result.Seconds.Orthogonalization,
+    result.Seconds.RayleighRitz,
+    result.Seconds.Verification,
+    result.Bands,
+    result.OperatorApplications,
+    result.MaxResidual,
+    orthogonality,
+    (filter + scipy).c_str());
   std::fflush(stdout);
   return 0;
 }
@@ -255,8 +308,8 @@ Settings Parse(int argc, char* argv[])
   const auto usage = [argv]()
   {
     std::fprintf(stderr,
-      "usage: %s [--case N:M]... [--band K] [--filter] [--scipy] [--scipy-max-n N] "
-      "[--workdir DIR]\n",
+      "usage: %s [--case N:M]... [--band K] [--scan] [--threads T] [--filter] [--scipy] "
+      "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
     std::exit(2);
   };
@@ -284,8 +337,9 @@ Settings Parse(int argc, char* argv[])
   Settings settings;
   const std::string self = argv[0];
   const std::size_t slash = self.rfind('/');
-  settings.ScriptDir = std::getenv("MH_BENCH_SCRIPTS") ? std::getenv("MH_BENCH_SCRIPTS")
-                                                        : (slash == std::string::npos ? "." : self.substr(0, slash));
+  settings.ScriptDir = std::getenv("MH_BENCH_SCRIPTS")
+    ? std::getenv("MH_BENCH_SCRIPTS")
+    : (slash == std::string::npos ? "." : self.substr(0, slash));
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -304,6 +358,14 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--band" && i + 1 < argc)
     {
       settings.BandSize = integer("--band", argv[++i], 0);
+    }
+    else if (arg == "--scan")
+    {
+      settings.Scan = true;
+    }
+    else if (arg == "--threads" && i + 1 < argc)
+    {
+      settings.Threads = integer("--threads", argv[++i], 0);
     }
     else if (arg == "--scipy")
     {
@@ -337,8 +399,19 @@ Settings Parse(int argc, char* argv[])
 int main(int argc, char* argv[])
 {
   const Settings settings = Parse(argc, argv);
-  std::printf("%8s %6s %8s %7s %7s %7s %7s %7s %7s %5s %7s %8s %8s\n", "n", "m", "wall[s]",
-    "assem", "factor", "solve", "ortho", "ritz", "verify", "bands", "applies", "residual",
+  std::printf("%8s %6s %8s %7s %7s %7s %7s %7s %7s %5s %7s %8s %8s\n",
+    "n",
+    "m",
+    "wall[s]",
+    "assem",
+    "factor",
+    "solve",
+    "ortho",
+    "ritz",
+    "verify",
+    "bands",
+    "applies",
+    "residual",
     "orthog");
   int failures = 0;
   for (const auto& c : settings.Cases)

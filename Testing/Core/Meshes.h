@@ -6,6 +6,7 @@
 #define spectral_Testing_Meshes_h
 
 #include "Common/Mesh.h"
+#include "Operators/Operators.h"
 
 #include <array>
 #include <cmath>
@@ -23,14 +24,40 @@ namespace testing
 inline TriangleMesh Icosphere(int level)
 {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<std::array<double, 3>> v = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 },
-    { 1, -t, 0 }, { 0, -1, t }, { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 },
-    { t, 0, 1 }, { -t, 0, -1 }, { -t, 0, 1 } };
-  std::vector<std::array<int, 3>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
-    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
-    { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 },
-    { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
-  auto normalize = [](std::array<double, 3> p) {
+  std::vector<std::array<double, 3>> v = { { -1, t, 0 },
+    { 1, t, 0 },
+    { -1, -t, 0 },
+    { 1, -t, 0 },
+    { 0, -1, t },
+    { 0, 1, t },
+    { 0, -1, -t },
+    { 0, 1, -t },
+    { t, 0, -1 },
+    { t, 0, 1 },
+    { -t, 0, -1 },
+    { -t, 0, 1 } };
+  std::vector<std::array<int, 3>> f = { { 0, 11, 5 },
+    { 0, 5, 1 },
+    { 0, 1, 7 },
+    { 0, 7, 10 },
+    { 0, 10, 11 },
+    { 1, 5, 9 },
+    { 5, 11, 4 },
+    { 11, 10, 2 },
+    { 10, 7, 6 },
+    { 7, 1, 8 },
+    { 3, 9, 4 },
+    { 3, 4, 2 },
+    { 3, 2, 6 },
+    { 3, 6, 8 },
+    { 3, 8, 9 },
+    { 4, 9, 5 },
+    { 2, 4, 11 },
+    { 6, 2, 10 },
+    { 8, 6, 7 },
+    { 9, 8, 1 } };
+  auto normalize = [](std::array<double, 3> p)
+  {
     const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     return std::array<double, 3>{ p[0] / r, p[1] / r, p[2] / r };
   };
@@ -41,7 +68,8 @@ inline TriangleMesh Icosphere(int level)
   for (int l = 0; l < level; ++l)
   {
     std::map<std::pair<int, int>, int> midpoints;
-    auto midpoint = [&](int a, int b) {
+    auto midpoint = [&](int a, int b)
+    {
       const auto key = std::make_pair(std::min(a, b), std::max(a, b));
       const auto it = midpoints.find(key);
       if (it != midpoints.end())
@@ -86,7 +114,7 @@ inline TriangleMesh Icosphere(int level)
  * along the diagonal p00-p11 where splitMain(i, j, p00, p10, p01, p11) is true, along p10-p01
  * otherwise.
  */
-template <typename Split>
+template<typename Split>
 inline Triangles GridTriangles(int nx, int ny, const Split& splitMain)
 {
   Triangles faces(2 * nx * ny, 3);
@@ -127,8 +155,8 @@ inline TriangleMesh Rectangle(double a, double b, int nx, int ny)
       mesh.Vertices.row(j * (nx + 1) + i) << a * i / nx, b * j / ny, 0.0;
     }
   }
-  mesh.Faces = GridTriangles(
-    nx, ny, [](int i, int j, int, int, int, int) { return (i + j) % 2 == 0; });
+  mesh.Faces =
+    GridTriangles(nx, ny, [](int i, int j, int, int, int, int) { return (i + j) % 2 == 0; });
   return mesh;
 }
 
@@ -204,8 +232,8 @@ inline TriangleMesh NoisyTorus(int nu, int nv, double noise)
     {
       const double v = 2.0 * pi * j / nv;
       const double rr = r * (1.0 + noise * uniform(generator));
-      mesh.Vertices.row(static_cast<Eigen::Index>(i) * nv + j) << (R + rr * std::cos(v)) *
-          std::cos(u),
+      mesh.Vertices.row(static_cast<Eigen::Index>(i) * nv + j)
+        << (R + rr * std::cos(v)) * std::cos(u),
         (R + rr * std::cos(v)) * std::sin(u), rr * std::sin(v);
     }
   }
@@ -233,6 +261,161 @@ inline TriangleMesh NoisyTorusOfSize(int n, double noise)
   const int nu = static_cast<int>(std::lround(std::sqrt(n / 0.35)));
   const int nv = std::max(3, static_cast<int>(std::lround(static_cast<double>(n) / nu)));
   return NoisyTorus(nu, nv, noise);
+}
+
+/// The defects of a real range scan that WithScanDefects sprinkles over a mesh.
+struct ScanDefects
+{
+  /// Triangles split 1-to-3 at a point very close to a corner: edges of 1e-4 to 1e-8 times the
+  /// triangle's (log-uniform), tiny lumped masses, near-degenerate (but not zero-area)
+  /// triangles.
+  int NearCoincident = 0;
+  /// Edges split at a point pushed off the edge by 5e-5 of its length: angles within 1e-4 of pi,
+  /// cotangent weights of about -1e4.
+  int Needles = 0;
+  /// Triangles of exactly zero area appended (an edge and its midpoint, a new point).
+  int ZeroArea = 0;
+  /// Small components (debris) beside the surface: flat grids of 3 to 80 points.
+  int Islands = 0;
+  /// Seed of the random choices.
+  unsigned Seed = 11u;
+};
+
+/**
+ * The mesh with the defects of a real range scan (see ScanDefects), at random places (fixed
+ * seed). The islands lie within the bounding box grown by 10%, a few mean edge lengths across.
+ */
+inline TriangleMesh WithScanDefects(const TriangleMesh& input, const ScanDefects& defects)
+{
+  std::mt19937 random(defects.Seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<Eigen::RowVector3d> points(static_cast<std::size_t>(input.Vertices.rows()));
+  for (Eigen::Index i = 0; i < input.Vertices.rows(); ++i)
+  {
+    points[static_cast<std::size_t>(i)] = input.Vertices.row(i);
+  }
+  std::vector<std::array<int, 3>> faces(static_cast<std::size_t>(input.Faces.rows()));
+  for (Eigen::Index f = 0; f < input.Faces.rows(); ++f)
+  {
+    faces[static_cast<std::size_t>(f)] = {
+      input.Faces(f, 0), input.Faces(f, 1), input.Faces(f, 2)
+    };
+  }
+  const auto randomFace = [&]()
+  {
+    return static_cast<std::size_t>(uniform(random) * static_cast<double>(faces.size())) %
+      faces.size();
+  };
+  const auto add = [&points](const Eigen::RowVector3d& p)
+  {
+    points.push_back(p);
+    return static_cast<int>(points.size()) - 1;
+  };
+  for (int k = 0; k < defects.NearCoincident; ++k)
+  {
+    const std::size_t f = randomFace();
+    const std::array<int, 3> t = faces[f];
+    const double ratio = std::pow(10.0, -4.0 - 4.0 * uniform(random));
+    const Eigen::RowVector3d a = points[static_cast<std::size_t>(t[0])];
+    const int p = add(a +
+      ratio * 0.5 *
+        (points[static_cast<std::size_t>(t[1])] - a + points[static_cast<std::size_t>(t[2])] - a));
+    faces[f] = { t[0], t[1], p };
+    faces.push_back({ t[1], t[2], p });
+    faces.push_back({ t[2], t[0], p });
+  }
+  // Directed edges -> face, for the needles' neighbours.
+  std::map<std::pair<int, int>, std::size_t> owner;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      owner[{ faces[f][c], faces[f][(c + 1) % 3] }] = f;
+    }
+  }
+  for (int k = 0; k < defects.Needles; ++k)
+  {
+    const std::size_t f1 = randomFace();
+    const std::array<int, 3> t = faces[f1];
+    const auto twin = owner.find({ t[1], t[0] });
+    if (twin == owner.end() || faces[twin->second][0] < 0)
+    {
+      continue;
+    }
+    const std::size_t f2 = twin->second;
+    int d = -1;
+    for (int c = 0; c < 3; ++c)
+    {
+      d = (faces[f2][c] != t[0] && faces[f2][c] != t[1]) ? faces[f2][c] : d;
+    }
+    const Eigen::RowVector3d a = points[t[0]], b = points[t[1]], c = points[t[2]];
+    const Eigen::RowVector3d middle = 0.5 * (a + b);
+    const Eigen::RowVector3d toward = (c - middle).normalized();
+    const int m = add(middle + 5e-5 * (b - a).norm() * toward);
+    faces[f1] = { t[0], m, t[2] };
+    faces[f2] = { t[1], m, d };
+    faces.push_back({ m, t[1], t[2] });
+    faces.push_back({ m, t[0], d });
+    for (const std::size_t g : { f1, f2, faces.size() - 2, faces.size() - 1 })
+    {
+      for (int e = 0; e < 3; ++e)
+      {
+        owner[{ faces[g][e], faces[g][(e + 1) % 3] }] = g;
+      }
+    }
+    owner.erase({ t[0], t[1] });
+    owner.erase({ t[1], t[0] });
+  }
+  for (int k = 0; k < defects.ZeroArea; ++k)
+  {
+    const std::array<int, 3> t = faces[randomFace()];
+    const int m = add(0.5 * (points[t[0]] + points[t[1]]));
+    faces.push_back({ t[0], t[1], m });
+  }
+  Eigen::RowVector3d low = input.Vertices.colwise().minCoeff();
+  Eigen::RowVector3d high = input.Vertices.colwise().maxCoeff();
+  const Eigen::RowVector3d grow = 0.1 * (high - low);
+  low -= grow;
+  high += grow;
+  const double h = MeanEdgeLength(input);
+  for (int k = 0; k < defects.Islands; ++k)
+  {
+    // 3 points (one triangle) or an nx by ny grid of up to 80 points.
+    const int nx = 1 + static_cast<int>(uniform(random) * 9.0);
+    const int ny = 1 + static_cast<int>(uniform(random) * 7.0);
+    const Eigen::RowVector3d origin = low.array() + uniform(random) * (high - low).array();
+    if (nx * ny == 1 || uniform(random) < 0.25)
+    {
+      const int a = add(origin);
+      const int b = add(origin + Eigen::RowVector3d(h, 0.0, 0.0));
+      const int c = add(origin + Eigen::RowVector3d(0.0, h, 0.2 * h));
+      faces.push_back({ a, b, c });
+      continue;
+    }
+    const TriangleMesh grid = Rectangle(nx * h, ny * h, nx, ny);
+    const int first = static_cast<int>(points.size());
+    for (Eigen::Index i = 0; i < grid.Vertices.rows(); ++i)
+    {
+      add(origin + grid.Vertices.row(i));
+    }
+    for (Eigen::Index f = 0; f < grid.Faces.rows(); ++f)
+    {
+      faces.push_back(
+        { first + grid.Faces(f, 0), first + grid.Faces(f, 1), first + grid.Faces(f, 2) });
+    }
+  }
+  TriangleMesh mesh;
+  mesh.Vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    mesh.Vertices.row(static_cast<Eigen::Index>(i)) = points[i];
+  }
+  mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    mesh.Faces.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
+  }
+  return mesh;
 }
 } // namespace testing
 } // namespace spectral

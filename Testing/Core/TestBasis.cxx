@@ -5,6 +5,7 @@
 // honours cancellation.
 #include "Basis.h"
 #include "Checks.h"
+#include "Common/Eigenvalues.h"
 #include "Meshes.h"
 
 #include <Eigen/Dense>
@@ -463,6 +464,93 @@ void DuplicateTriangles()
     (basis.LumpedMass - clean.LumpedMass).cwiseAbs().maxCoeff(), 1e-15, "the mass is the sphere's");
 }
 
+//------------------------------------------------------------------------------
+// A noisy torus of 20,000 points with what real range scans carry: near-coincident points
+// (edges of 1e-4 to 1e-8 of their triangle's), needles (cotangents of about 1e4), zero-area
+// triangles and 200 islands of 3 to 80 points.
+void ScanDefectsGiveABasis()
+{
+  ScanDefects defects;
+  defects.NearCoincident = 40;
+  defects.Needles = 40;
+  defects.ZeroArea = 30;
+  defects.Islands = 200;
+  const TriangleMesh mesh = WithScanDefects(NoisyTorusOfSize(20000, 0.02), defects);
+  for (const LaplacianKind laplacian :
+    { LaplacianKind::Cotangent, LaplacianKind::IntrinsicDelaunay })
+  {
+    const std::string name =
+      laplacian == LaplacianKind::Cotangent ? "scan [cotan]: " : "scan [intrinsic]: ";
+    BasisOptions options;
+    options.NumberOfHarmonics = 260;
+    options.Operators.Laplacian = laplacian;
+    std::vector<std::string> seen;
+    Monitor monitor;
+    monitor.Warning = [&seen](const std::string& text) { seen.push_back(text); };
+    BasisResult basis;
+    try
+    {
+      basis = ComputeBasis(mesh, options, monitor);
+    }
+    catch (const std::exception& e)
+    {
+      Check(false, name + "no basis: " + e.what());
+      continue;
+    }
+    for (const std::string& text : seen)
+    {
+      std::printf("    warning: %s\n", text.c_str());
+    }
+    const Vector& lambda = basis.Pairs.Eigenvalues;
+    int zeros = 0;
+    for (Eigen::Index k = 0; k < lambda.size(); ++k)
+    {
+      zeros += IsZeroEigenvalue(lambda[k], lambda[lambda.size() - 1]) ? 1 : 0;
+    }
+    Check(basis.Components == 201 && zeros == 201,
+      name + "one zero eigenvalue per component: " + std::to_string(zeros) + " of " +
+        std::to_string(basis.Components));
+    const DiscreteLaplacian ops = AssembleLaplacian(PrepareMesh(mesh), options.Operators);
+    CheckBelow(
+      OrthonormalityError(basis.Pairs.Eigenvectors, ops.Mass), 1e-10, name + "M-orthonormal");
+  }
+}
+
+//------------------------------------------------------------------------------
+void ThreadsMatchOneThread()
+{
+  // Several bands on a 20,000-point torus: the factorizations, solves and block products of
+  // every band on 1, 2, 4 and 8 threads (oversubscribed on a small machine) give the basis of
+  // one thread.
+  BasisOptions options;
+  options.NumberOfHarmonics = 150;
+  options.Solver.BandSize = 60;
+  options.Solver.Threads = 1;
+  const TriangleMesh mesh = NoisyTorusOfSize(20000, 0.02);
+  const BasisResult one = ComputeBasis(mesh, options);
+  for (int threads : { 2, 4, 8 })
+  {
+    options.Solver.Threads = threads;
+    const BasisResult many = ComputeBasis(mesh, options);
+    const std::string name = std::to_string(threads) + " threads: ";
+    CheckBelow(EigenvalueDifference(many.Pairs.Eigenvalues, one.Pairs.Eigenvalues),
+      1e-12,
+      name + "eigenvalues of one thread");
+    // Compare spans, not vectors: a multiple eigenvalue's basis may rotate with round-off.
+    const DiscreteLaplacian ops = AssembleLaplacian(PrepareMesh(mesh), options.Operators);
+    const DenseMatrix overlap =
+      one.Pairs.Eigenvectors.transpose() * (ops.Mass * many.Pairs.Eigenvectors);
+    const Eigen::JacobiSVD<DenseMatrix> svd(overlap);
+    CheckBelow(1.0 - svd.singularValues().minCoeff(),
+      1e-9,
+      name + "the harmonics span the same space (smallest principal cosine)");
+    Check(
+      many.Pairs.Bands == one.Pairs.Bands && many.Pairs.Factorizations == one.Pairs.Factorizations,
+      name + "the same bands and factorizations (" + std::to_string(many.Pairs.Bands) + ", " +
+        std::to_string(many.Pairs.Factorizations) + ")");
+  }
+}
+
 const Case Cases[] = {
   { "SameAsParts", SameAsParts },
   { "WarningsAndClamping", WarningsAndClamping },
@@ -474,6 +562,8 @@ const Case Cases[] = {
   { "FewerHarmonicsThanComponents", FewerHarmonicsThanComponents },
   { "ScaleInvariance", ScaleInvariance },
   { "DuplicateTriangles", DuplicateTriangles },
+  { "ScanDefectsGiveABasis", ScanDefectsGiveABasis },
+  { "ThreadsMatchOneThread", ThreadsMatchOneThread },
 };
 } // namespace
 

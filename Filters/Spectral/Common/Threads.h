@@ -8,9 +8,10 @@
  * Every parallel part of the core (the transforms of Transfer.h, the block products of
  * BlockProducts.h, the factorization and solves of SupernodalLDLT.h) takes a thread count with
  * the same meaning, resolved by ResolveThreads: a count >= 1 is used as is, 0 means every core
- * of the machine. Where 0 is asked for, products too small to gain from threads stay on fewer
- * (ThreadsForWork: each thread gets at least a minimum amount of work), never on more than the
- * cores.
+ * of the machine, or the limit that a ScopedThreadLimit holds on the calling thread (how the
+ * eigensolver passes EigenOptions::Threads to all its parts). Where 0 is asked for, products too
+ * small to gain from threads stay on fewer (ThreadsForWork: each thread gets at least a minimum
+ * amount of work), never on more than the cores.
  *
  * They run on plain std::threads rather than on vtkSMPTools because the core does not know VTK,
  * and because ParaView as packaged by Debian selects vtkSMPTools' Sequential backend, which
@@ -36,15 +37,52 @@
 
 namespace spectral
 {
+/// The limit that ScopedThreadLimit set on the calling thread; 0 for none.
+inline int& ThreadLimit()
+{
+  static thread_local int limit = 0;
+  return limit;
+}
+
 /**
- * The thread count of the core: `requested` if it is >= 1, else (0, automatic) the number of
- * cores of the machine (std::thread::hardware_concurrency(), 1 where it is unknown).
+ * For its lifetime, what a request of 0 threads means on the calling thread: `threads` (>= 1)
+ * instead of every core, for everything the computation that holds it runs (e.g. the
+ * eigensolver with EigenOptions::Threads). 0 leaves the meaning unchanged. Computations on other
+ * threads are not affected.
+ */
+class ScopedThreadLimit
+{
+public:
+  explicit ScopedThreadLimit(int threads)
+    : Previous(ThreadLimit())
+  {
+    if (threads >= 1)
+    {
+      ThreadLimit() = threads;
+    }
+  }
+  ~ScopedThreadLimit() { ThreadLimit() = this->Previous; }
+  ScopedThreadLimit(const ScopedThreadLimit&) = delete;
+  ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
+
+private:
+  int Previous;
+};
+
+/**
+ * The thread count of the core: `requested` if it is >= 1, else (0, automatic) the limit of a
+ * ScopedThreadLimit on the calling thread, or the number of cores of the machine
+ * (std::thread::hardware_concurrency(), 1 where it is unknown).
  */
 inline int ResolveThreads(int requested)
 {
   if (requested >= 1)
   {
     return requested;
+  }
+  if (ThreadLimit() >= 1)
+  {
+    return ThreadLimit();
   }
   const unsigned int cores = std::thread::hardware_concurrency();
   return cores == 0 ? 1 : static_cast<int>(std::min<unsigned int>(cores, INT_MAX));

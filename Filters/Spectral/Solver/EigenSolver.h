@@ -23,6 +23,7 @@
 #ifndef spectral_EigenSolver_h
 #define spectral_EigenSolver_h
 
+#include "Common/Defaults.h"
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
 
@@ -50,7 +51,7 @@ enum class FactorizationMethod
 struct EigenOptions
 {
   /// m, the number of eigenpairs wanted (1 <= m <= n).
-  int NumberOfEigenpairs = 100;
+  int NumberOfEigenpairs = DefaultNumberOfHarmonics;
   /// Eigenpairs requested per band; 0 chooses automatically (the band policy of Bands.h).
   int BandSize = 0;
   /// Relative convergence tolerance of the Lanczos iteration within a band.
@@ -65,6 +66,9 @@ struct EigenOptions
   LanczosMethod Method = LanczosMethod::Block;
   /// The factorization of L - sigma M.
   FactorizationMethod Factorization = FactorizationMethod::Supernodal;
+  /// Threads of the factorizations, solves and block products: 0 every core (the rule of
+  /// Common/Threads.h); the results do not depend on it beyond round-off.
+  int Threads = 0;
 };
 
 /// Seconds spent in each stage of SmallestEigenpairs.

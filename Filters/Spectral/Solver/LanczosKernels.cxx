@@ -16,7 +16,7 @@ namespace detail
 {
 namespace
 {
-/// out = X Z for a tall X, rows on two threads; out does not overlap X.
+/// out = X Z for a tall X, rows on BlockThreads threads; out does not overlap X.
 void MultiplyInto(Eigen::Ref<DenseMatrix> out,
   const Eigen::Ref<const DenseMatrix>& X,
   const DenseMatrix& Z)
@@ -59,15 +59,16 @@ void ReplaceDeficient(DenseMatrix& W,
 void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z, DenseMatrix* gram)
 {
   const Eigen::Index chunk = 256;
-  DenseMatrix partial[2];
+  const int parts = BlockThreads(X.rows());
+  std::vector<DenseMatrix> partial(static_cast<std::size_t>(parts));
   ForEachRowRange(X.rows(),
-    BlockThreads(X.rows()),
+    parts,
     [&](int part, Eigen::Index first, Eigen::Index count)
     {
       DenseMatrix rows(std::min(chunk, count), Z.cols());
       if (gram)
       {
-        partial[part] = DenseMatrix::Zero(Z.cols(), Z.cols());
+        partial[static_cast<std::size_t>(part)] = DenseMatrix::Zero(Z.cols(), Z.cols());
       }
       for (Eigen::Index r = first; r < first + count; r += chunk)
       {
@@ -76,13 +77,23 @@ void MultiplyInPlace(Eigen::Ref<DenseMatrix> X, const DenseMatrix& Z, DenseMatri
         X.block(r, 0, h, Z.cols()) = rows.topRows(h);
         if (gram)
         {
-          partial[part].noalias() += rows.topRows(h).transpose() * rows.topRows(h);
+          partial[static_cast<std::size_t>(part)].noalias() +=
+            rows.topRows(h).transpose() * rows.topRows(h);
         }
       }
     });
   if (gram)
   {
-    *gram = partial[1].size() ? (partial[0] + partial[1]).eval() : partial[0];
+    // The partial Gram matrices added in range order: the same sum for any thread count with
+    // the same ranges.
+    *gram = partial[0];
+    for (std::size_t part = 1; part < partial.size(); ++part)
+    {
+      if (partial[part].size())
+      {
+        *gram += partial[part];
+      }
+    }
   }
 }
 

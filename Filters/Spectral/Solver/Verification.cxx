@@ -94,12 +94,15 @@ Vector RelativeResiduals(const SparseMatrix& L,
   const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
   reference = std::max(reference, 1e-6 * traceRatio);
   // A block of columns at a time: the residuals of all m pairs at once would take twice the
-  // memory of the basis. Two threads take half of the columns each (the sparse products are
-  // single-threaded), each with its own two blocks.
+  // memory of the basis. The threads take a range of columns each (the sparse products are
+  // single-threaded), each with its own two blocks; no more threads than keep these blocks
+  // within half the memory of the basis (one per 128 columns).
   Vector out(lambda.size());
   const Eigen::Index block = 32;
+  const int parts = static_cast<int>(std::max<Eigen::Index>(
+    1, std::min<Eigen::Index>(BlockThreads(Phi.rows()), lambda.size() / 128)));
   ForEachRowRange(lambda.size(),
-    BlockThreads(Phi.rows()),
+    parts,
     [&](int, Eigen::Index begin, Eigen::Index columns)
     {
       DenseMatrix R(Phi.rows(), std::min(block, columns));
