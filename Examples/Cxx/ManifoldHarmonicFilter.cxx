@@ -51,6 +51,7 @@ struct Options
   double Gain = 2.0;
   double Time = -1.0; // < 0: ln 2 / cutoff^2
   bool Reinject = true;
+  int Threads = 0; // 0: every core
 };
 
 // After "--help" and "--harmonics", whose default PrintUsage takes from vtkManifoldHarmonicBasis.
@@ -61,7 +62,8 @@ const char* const OptionsHelp =
   "  --upper w       upper band edge (default: 2 x cutoff)\n"
   "  --gain g        gain of enhancement and exaggeration (default 2)\n"
   "  --time t        heat diffusion time (default ln 2 / cutoff^2: the gain at the cutoff is 1/2)\n"
-  "  --no-reinject   drop the frequencies above the last harmonic\n";
+  "  --no-reinject   drop the frequencies above the last harmonic\n"
+  "  --threads t     threads of the eigensolve and the filter stage (default 0: every core)\n";
 
 void PrintUsage(std::ostream& os, const char* program)
 {
@@ -166,6 +168,18 @@ bool Parse(int argc, char* argv[], Options& options)
       if (options.Harmonics < 1)
       {
         std::cerr << "--harmonics: at least 1, not " << options.Harmonics << "\n";
+        return false;
+      }
+    }
+    else if (option == "--threads")
+    {
+      if (!ReadNumber(option, value, options.Threads))
+      {
+        return false;
+      }
+      if (options.Threads < 0)
+      {
+        std::cerr << "--threads: at least 0 (every core), not " << options.Threads << "\n";
         return false;
       }
     }
@@ -293,6 +307,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkManifoldHarmonicBasis> basis;
   basis->SetInputData(surface);
   basis->SetNumberOfHarmonics(options.Harmonics);
+  basis->SetNumberOfThreads(options.Threads);
   basis->Update();
   timer->StopTimer();
   vtkDataArray* lambda =
@@ -309,10 +324,12 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkManifoldHarmonicTransform> transform;
   transform->SetInputConnection(basis->GetOutputPort());
+  transform->SetNumberOfThreads(options.Threads);
 
   const double cutoff = options.Cutoff >= 0.0 ? options.Cutoff : 0.5 * highest;
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetNumberOfThreads(options.Threads);
   filter->SetFilterKind(options.Kind);
   filter->SetCutoff(cutoff);
   filter->SetUpperCutoff(options.Upper >= 0.0 ? options.Upper : 2.0 * cutoff);

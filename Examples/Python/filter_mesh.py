@@ -6,7 +6,7 @@ Usage (pvpython, with the build tree's env.sh sourced):
 
     pvpython filter_mesh.py input.(ply|obj|stl|vtp) output.vtp [--harmonics M]
         [--kind lowpass|highpass|bandpass|bandstop|enhancement|exaggeration|heat|custom]
-        [--cutoff W] [--upper W] [--gain G] [--time T] [--no-reinject]
+        [--cutoff W] [--upper W] [--gain G] [--time T] [--no-reinject] [--threads T]
 
 The cutoff defaults to half the highest computed frequency; custom is a ramp from gain 1 at 0
 to gain 0 at the cutoff; the heat time defaults to ln 2 / cutoff^2, where the heat kernel halves
@@ -51,6 +51,13 @@ def positive_int(text):
     return value
 
 
+def non_negative_int(text):
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError("must be at least 0, not %d" % value)
+    return value
+
+
 def non_negative_float(text):
     value = float(text)
     if not value >= 0.0 or math.isinf(value):
@@ -65,6 +72,9 @@ def parse_arguments(argv):
     default_harmonics = vtkManifoldHarmonicBasis.DEFAULT_NUMBER_OF_HARMONICS
     parser.add_argument("--harmonics", type=positive_int, default=default_harmonics,
                         help="number of harmonics, at least 1 (default %d)" % default_harmonics)
+    parser.add_argument("--threads", type=non_negative_int, default=0,
+                        help="threads of the eigensolve and the filter stage "
+                             "(default 0: every core)")
     parser.add_argument("--kind", choices=sorted(KINDS), default="lowpass",
                         help="transfer function (default lowpass)")
     parser.add_argument("--cutoff", type=non_negative_float, default=None,
@@ -106,6 +116,7 @@ def main(argv):
     basis = vtkManifoldHarmonicBasis()
     basis.SetInputData(surface)
     basis.SetNumberOfHarmonics(args.harmonics)
+    basis.SetNumberOfThreads(args.threads)
     basis.Update()
     eigenvalues = basis.GetOutput().GetFieldData().GetArray(
         vtkManifoldHarmonicBasis.EigenvaluesArrayName())
@@ -118,12 +129,14 @@ def main(argv):
 
     transform = vtkManifoldHarmonicTransform()
     transform.SetInputConnection(basis.GetOutputPort())
+    transform.SetNumberOfThreads(args.threads)
 
     cutoff = args.cutoff if args.cutoff is not None else 0.5 * highest
     time = args.time if args.time is not None else (
         math.log(2.0) / cutoff ** 2 if cutoff > 0.0 else 0.0)
     spectral = vtkSpectralFilter()
     spectral.SetInputConnection(transform.GetOutputPort())
+    spectral.SetNumberOfThreads(args.threads)
     spectral.SetFilterKind(KINDS[args.kind])
     spectral.SetCutoff(cutoff)
     spectral.SetUpperCutoff(args.upper if args.upper is not None else 2.0 * cutoff)

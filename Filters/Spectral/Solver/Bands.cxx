@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/Bands.h"
+#include "Common/Eigenvalues.h"
 #include "Solver/BandWorkspace.h"
 #include "Solver/BlockLanczos.h"
 #include "Solver/BlockProducts.h"
@@ -444,7 +445,8 @@ bool BandLoop::InertiaAgrees(const Vector& trusted, double low)
 }
 
 //------------------------------------------------------------------------------
-// The first non-zero eigenvalue (above 1e-6 of the band's largest), once a band has found it.
+// The first non-zero eigenvalue (IsZeroEigenvalue with the band's largest as the scale), once a
+// band has found it.
 void BandLoop::UpdateReference(const Vector& trusted)
 {
   if (!(this->Reference > 0.0) && trusted.size() > 0)
@@ -452,7 +454,7 @@ void BandLoop::UpdateReference(const Vector& trusted)
     const double top = std::abs(trusted[trusted.size() - 1]);
     for (Eigen::Index i = 0; i < trusted.size(); ++i)
     {
-      if (std::abs(trusted[i]) > 1e-6 * top)
+      if (!IsZeroEigenvalue(std::abs(trusted[i]), top))
       {
         this->Reference = std::abs(trusted[i]);
         break;

@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/BlockLanczos.h"
+#include "Common/Eigenvalues.h"
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 #include "Solver/LanczosKernels.h"
@@ -353,8 +354,8 @@ void BlockLanczosBand::ComputeRitzPairs(RitzPairs& ritz) const
 }
 
 //------------------------------------------------------------------------------
-// LambdaReference if known, else the smallest |lambda| above 1e-6 of the largest among the nev
-// pairs nearest the shift.
+// LambdaReference if known, else the smallest non-zero |lambda| (IsZeroEigenvalue, scaled by the
+// largest) among the nev pairs nearest the shift.
 double BlockLanczosBand::ResidualReference(const RitzPairs& ritz) const
 {
   double reference = this->LambdaReference;
@@ -373,7 +374,7 @@ double BlockLanczosBand::ResidualReference(const RitzPairs& ritz) const
     {
       const double lambda =
         std::abs(this->Sigma + 1.0 / theta[ritz.Order[static_cast<std::size_t>(i)]]);
-      reference = lambda > 1e-6 * top ? std::min(reference, lambda) : reference;
+      reference = !IsZeroEigenvalue(lambda, top) ? std::min(reference, lambda) : reference;
     }
   }
   return reference;

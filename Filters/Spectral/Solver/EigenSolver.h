@@ -128,7 +128,8 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
 /**
  * Relative residuals of eigenpairs: for each k,
  * ||L h_k - lambda_k M h_k||_{D^-1} / max(|lambda_k|, lambda_ref), where D holds the row sums of
- * M and lambda_ref is the smallest |lambda| that exceeds 1e-6 of the largest (the first non-zero
+ * M and lambda_ref is the smallest |lambda| that is not zero by IsZeroEigenvalue (Common/
+ * Eigenvalues.h) with the largest as the scale (the first non-zero
  * frequency), so that zero eigenvalues are measured against the scale of the spectrum; it is at
  * least 1e-6 trace(L) / trace(M), which only matters when no non-zero eigenvalue is returned.
  */

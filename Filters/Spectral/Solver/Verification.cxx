@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/Verification.h"
+#include "Common/Eigenvalues.h"
 #include "Common/Threads.h"
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
@@ -84,7 +85,7 @@ Vector RelativeResiduals(const SparseMatrix& L,
   double reference = top;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
   {
-    if (std::abs(lambda[k]) > 1e-6 * top)
+    if (!IsZeroEigenvalue(std::abs(lambda[k]), top))
     {
       reference = std::min(reference, std::abs(lambda[k]));
     }
