@@ -110,9 +110,34 @@ vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
 }
 
 //------------------------------------------------------------------------------
-// Adds the harmonics and the lumped mass (point data, zero on unused points) and the eigenvalues
-// (field data) to the output. Ids maps the rows of the core's matrices to output points. The
-// harmonics are written as floats when `floats` is true.
+// Adds the harmonics (point data, zero on the points Ids does not reach; floats when `floats`)
+// to the output. Ids maps the rows of the core's matrix to output points.
+void AddHarmonicsArray(vtkPolyData* output,
+  const spectral::DenseMatrix& H,
+  const std::vector<int>& ids,
+  bool floats)
+{
+  const vtkIdType numPts = output->GetNumberOfPoints();
+  const char* name = vtkManifoldHarmonicBasis::HarmonicsArrayName();
+  vtkSmartPointer<vtkDataArray> harmonics;
+  if (floats)
+  {
+    harmonics = ScatterToPoints<vtkFloatArray>(name, H, ids, numPts);
+  }
+  else
+  {
+    harmonics = ScatterToPoints<vtkDoubleArray>(name, H, ids, numPts);
+  }
+  for (Eigen::Index k = 0; k < H.cols(); ++k)
+  {
+    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
+  }
+  output->GetPointData()->AddArray(harmonics);
+}
+
+//------------------------------------------------------------------------------
+// Adds the harmonics (when the result has them: not with EigenvaluesOnly) and the lumped mass
+// (point data, zero on unused points) and the eigenvalues (field data) to the output.
 void AddBasisArrays(vtkPolyData* output,
   const spectral::EigenResult& result,
   const std::vector<int>& ids,
@@ -121,21 +146,10 @@ void AddBasisArrays(vtkPolyData* output,
 {
   const vtkIdType numPts = output->GetNumberOfPoints();
   const int m = static_cast<int>(result.Eigenvalues.size());
-  const char* name = vtkManifoldHarmonicBasis::HarmonicsArrayName();
-  vtkSmartPointer<vtkDataArray> harmonics;
-  if (floats)
+  if (result.Eigenvectors.cols() == m && m > 0)
   {
-    harmonics = ScatterToPoints<vtkFloatArray>(name, result.Eigenvectors, ids, numPts);
+    AddHarmonicsArray(output, result.Eigenvectors, ids, floats);
   }
-  else
-  {
-    harmonics = ScatterToPoints<vtkDoubleArray>(name, result.Eigenvectors, ids, numPts);
-  }
-  for (int k = 0; k < m; ++k)
-  {
-    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
-  }
-  output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(ScatterToPoints<vtkDoubleArray>(
     vtkManifoldHarmonicBasis::MassArrayName(), lumped, ids, numPts));
 
@@ -304,6 +318,9 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.Solver.MaxIterations = self->GetMaxIterations();
   options.MinimumComponentSize = self->GetMinimumComponentSize();
   options.Solver.Threads = self->GetNumberOfThreads();
+  options.EigenvaluesOnly = self->GetEigenvaluesOnly();
+  options.LowerFrequency = self->GetFrequencyWindow()[0];
+  options.UpperFrequency = self->GetFrequencyWindow()[1];
   options.BytesPerValue = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT ? 4 : 8;
   // A limit below one byte still limits (0 would mean "ask the system").
   options.MemoryLimit = self->GetMemoryLimit() > 0.0
@@ -338,7 +355,10 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , MemoryLimit(0.0)
   , MinimumComponentSize(0)
   , NumberOfThreads(0)
+  , EigenvaluesOnly(false)
 {
+  this->FrequencyWindow[0] = 0.0;
+  this->FrequencyWindow[1] = 0.0;
 }
 
 //------------------------------------------------------------------------------
@@ -389,6 +409,14 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   vtkPolyData* input,
   vtkPolyData* output)
 {
+  if (this->EigenvaluesOnly)
+  {
+    // Refused on every process alike, before any collective step.
+    vtkErrorMacro(<< "EigenvaluesOnly is not available in distributed runs yet: turn it off, or "
+                     "compute the spectrum in a serial run.");
+    output->Initialize();
+    return 0;
+  }
   const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
   vtkSmartPointer<vtkPolyData> piece = input;
   if (hasSurface)
@@ -526,4 +554,8 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Minimum Component Size: " << this->MinimumComponentSize
      << " (default 0, every component)\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << " (default 0, every core)\n";
+  os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off")
+     << " (default off)\n";
+  os << indent << "Frequency Window: [" << this->FrequencyWindow[0] << ", "
+     << this->FrequencyWindow[1] << ") (default [0, 0): off)\n";
 }

@@ -275,6 +275,31 @@ public:
 
   ///@{
   /**
+   * Compute and verify the eigenvalues but do not store the n x m harmonics: the output has the
+   * eigenvalues and the mass only (for ShapeDNA with vtkSpectralDescriptors), and the memory
+   * check leaves the output basis out. The eigensolver still holds its own double eigenvectors
+   * while it runs. Not available in distributed runs yet (an error says so). Default is false.
+   */
+  vtkSetMacro(EigenvaluesOnly, bool);
+  vtkGetMacro(EigenvaluesOnly, bool);
+  vtkBooleanMacro(EigenvaluesOnly, bool);
+  ///@}
+
+  ///@{
+  /**
+   * A frequency window [lower, upper) in the units of the mesh: when upper > 0, the harmonics
+   * whose frequency omega = sqrt(lambda) lies in it are computed instead of the
+   * NumberOfHarmonics smallest. Two inertia counts prove how many there are (none missing); they
+   * are computed as the smallest ones up to the upper end, so the cost is that of all the
+   * harmonics below it. An empty window, or one without an eigenvalue, is an error.
+   * Default is (0, 0): off.
+   */
+  vtkSetVector2Macro(FrequencyWindow, double);
+  vtkGetVector2Macro(FrequencyWindow, double);
+  ///@}
+
+  ///@{
+  /**
    * Threads of the eigensolver's factorizations, solves and block products; 0 uses every core
    * of the machine. Results do not depend on it beyond round-off. Range [0, VTK_INT_MAX].
    * Default is 0.
@@ -325,6 +350,8 @@ protected:
   double MemoryLimit;
   int MinimumComponentSize;
   int NumberOfThreads;
+  bool EigenvaluesOnly;
+  double FrequencyWindow[2];
 
 private:
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;

@@ -162,6 +162,15 @@ std::string CheckTimes(vtkSpectralDescriptors* self)
   return problem.str();
 }
 
+/// Whether the input holds a spectrum without harmonics (vtkManifoldHarmonicBasis with
+/// EigenvaluesOnly): eigenvalues and mass, no harmonics array.
+bool SpectrumOnly(vtkPolyData* input)
+{
+  return !input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Harmonics) &&
+    input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass) &&
+    input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
+}
+
 /// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda A.
 void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
 {
@@ -277,6 +286,30 @@ void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
 }
 
 //------------------------------------------------------------------------------
+int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output, vtkTable* table)
+{
+  if (this->ComputeHeatKernelSignature || this->ComputeWaveKernelSignature ||
+    this->ComputeGlobalPointSignature || this->ComputeSpectralDistance)
+  {
+    vtkErrorMacro(<< "The basis holds eigenvalues only (ManifoldHarmonicBasis with "
+                     "EigenvaluesOnly): the point descriptors need its harmonics. Turn them off "
+                     "for ShapeDNA alone, or compute the harmonics.");
+    return 0;
+  }
+  const spectral::Vector mass = vtkManifoldHarmonicsArrays::Signal(
+    input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass))
+                                  .View()
+                                  .col(0);
+  const spectral::Vector lambda = vtkManifoldHarmonicsArrays::Signal(
+    input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues))
+                                    .View()
+                                    .col(0);
+  FillShapeDNA(lambda, mass.sum(), table);
+  output->ShallowCopy(input);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 vtkTable* vtkSpectralDescriptors::GetShapeDNAOutput()
 {
   return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
@@ -349,6 +382,10 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
     vtkWarningMacro(<< "No data to describe!");
     output->ShallowCopy(input);
     return 1;
+  }
+  if (SpectrumOnly(input))
+  {
+    return this->ShapeDNAOnly(input, output, shapeDNA);
   }
   vtkManifoldHarmonicsArrays::Basis basis;
   std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);

@@ -284,6 +284,9 @@ protected:
   double SourceLocation[3];
   vtkIdType UsedSourcePoint = -1;
 
+  /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics).
+  int ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output, vtkTable* table);
+
 private:
   vtkSpectralDescriptors(const vtkSpectralDescriptors&) = delete;
   void operator=(const vtkSpectralDescriptors&) = delete;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace spectral
 {
@@ -50,7 +51,7 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
     static_cast<std::uint64_t>(used),
     m,
     options.Solver.BandSize,
-    options.BytesPerValue);
+    options.EigenvaluesOnly ? 0 : options.BytesPerValue);
   const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
   if (available != 0 && need.Total() > available)
   {
@@ -211,6 +212,44 @@ void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
 }
 
 //------------------------------------------------------------------------------
+// The numbers of eigenvalues below the two ends of the frequency window (in the units of the
+// operators: frequencies times s), from the inertia of L - omega^2 M.
+std::pair<int, int> WindowCounts(const DiscreteLaplacian& ops,
+  const BasisOptions& options,
+  double s)
+{
+  const double low = options.LowerFrequency * s;
+  const double high = options.UpperFrequency * s;
+  if (!(options.LowerFrequency >= 0.0) || !(high > low) || !std::isfinite(high))
+  {
+    throw InvalidInput("the frequency window [" + std::to_string(options.LowerFrequency) + ", " +
+      std::to_string(options.UpperFrequency) + ") must have 0 <= lower < upper < infinity");
+  }
+  // Below omega = 0 there is no eigenvalue (L is positive semi-definite, and singular at 0).
+  const int below = low > 0.0 ? CountEigenvaluesBelow(ops.Stiffness, ops.Mass, low * low) : 0;
+  const int upTo = CountEigenvaluesBelow(ops.Stiffness, ops.Mass, high * high);
+  if (upTo <= below)
+  {
+    throw InvalidInput("no eigenvalue lies in the frequency window [" +
+      std::to_string(options.LowerFrequency) + ", " + std::to_string(options.UpperFrequency) +
+      "): " + std::to_string(below) + " lie below it");
+  }
+  return { below, upTo };
+}
+
+//------------------------------------------------------------------------------
+// Keeps the pairs [first, end) of the result.
+void KeepPairs(EigenResult& pairs, int first, int end)
+{
+  const int count = end - first;
+  pairs.Eigenvalues = Vector(pairs.Eigenvalues.segment(first, count));
+  if (pairs.Eigenvectors.cols() > 0)
+  {
+    pairs.Eigenvectors = DenseMatrix(pairs.Eigenvectors.middleCols(first, count));
+  }
+}
+
+//------------------------------------------------------------------------------
 // The power of two nearest the diameter of the points (1 for a single point): dividing the
 // coordinates by it is exact, and makes the solve independent of the mesh's units.
 double UnitScale(const Points& points)
@@ -255,9 +294,11 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
         ? "every connected component is smaller than MinimumComponentSize"
         : "every triangle of the input is degenerate (zero area)");
   }
-  const int m =
-    ClampedHarmonics(options.NumberOfHarmonics, static_cast<int>(used), monitor, result);
-  if (options.CheckMemory)
+  const bool window = options.UpperFrequency > 0.0;
+  int m = window
+    ? 0
+    : ClampedHarmonics(options.NumberOfHarmonics, static_cast<int>(used), monitor, result);
+  if (options.CheckMemory && !window)
   {
     CheckMemory(mesh, used, m, options);
   }
@@ -268,6 +309,16 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);
+  std::pair<int, int> pairs(0, m);
+  if (window)
+  {
+    pairs = WindowCounts(ops, options, s);
+    m = pairs.second;
+    if (options.CheckMemory)
+    {
+      CheckMemory(mesh, used, m, options);
+    }
+  }
   result.Components = ops.Components.Count;
   ReportComponents(result.Components, m, monitor, result);
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -295,7 +346,16 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   result.Pairs.Eigenvectors /= s;
   result.LumpedMass = ops.LumpedMass * (s * s);
   result.InputPointIds = std::move(ops.InputPointIds);
+  if (window)
+  {
+    KeepPairs(result.Pairs, pairs.first, pairs.second);
+    result.FirstIndex = pairs.first;
+  }
   LeaveOutUnrepresented(result, monitor);
+  if (options.EigenvaluesOnly)
+  {
+    result.Pairs.Eigenvectors.resize(0, 0);
+  }
   return result;
 }
 } // namespace spectral

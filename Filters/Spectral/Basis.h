@@ -50,6 +50,19 @@ struct BasisOptions
   EigenOptions Solver;
   /// Bytes of one value of the caller's output basis (8 double, 4 float): the memory estimate.
   int BytesPerValue = 8;
+  /// Compute and verify the eigenpairs but return no harmonics (BasisResult::Pairs has no
+  /// eigenvectors): the spectrum alone, without the output basis in the memory estimate.
+  bool EigenvaluesOnly = false;
+  /**
+   * The frequency window [LowerFrequency, UpperFrequency): when UpperFrequency > 0, the
+   * harmonics whose frequency omega = sqrt(lambda) lies in it are computed instead of the
+   * NumberOfHarmonics smallest. Their number is proven by two inertia counts (Sylvester's law:
+   * the negative pivots of L - omega^2 M are the eigenvalues below omega^2), and the pairs are
+   * computed as the smallest ones up to the upper end, so the cost is that of all the harmonics
+   * below it. Frequencies are in the units of the mesh.
+   */
+  double LowerFrequency = 0.0;
+  double UpperFrequency = 0.0;
   /// Whether to compare the memory estimate with what is available before assembling.
   bool CheckMemory = true;
   /// The memory available in bytes; 0 asks the system (AvailableMemory in Solver/Memory.h).
@@ -69,6 +82,9 @@ struct BasisResult
   std::vector<int> InputPointIds;
   /// Number of connected components (one zero eigenvalue each).
   int Components = 0;
+  /// With a frequency window: the number of eigenvalues below its lower end (the index of the
+  /// first returned pair among all); otherwise 0.
+  int FirstIndex = 0;
   /// Every warning that Monitor::Warning received, in order.
   std::vector<std::string> Warnings;
   /// Seconds spent preparing the mesh and assembling the operators.
@@ -95,7 +111,8 @@ public:
  * \param monitor Progress in [0, 1] (0.1 at the end of the assembly), cancellation, the names
  *        of the steps ("Assemble", "Eigensolve") and warnings as soon as they are known.
  * \throws InvalidInput for an index out of range, a non-finite coordinate on a used point, a
- *         mesh whose triangles are all degenerate, or NumberOfHarmonics below 1.
+ *         mesh whose triangles are all degenerate, NumberOfHarmonics below 1, or a frequency
+ *         window that is empty or holds no eigenvalue.
  * \throws InsufficientMemory if the estimate exceeds the available memory.
  * \throws SolverFailure if no verified basis can be had (see SmallestEigenpairs).
  * \throws Cancelled if the monitor says so.

@@ -551,6 +551,74 @@ void ThreadsMatchOneThread()
   }
 }
 
+//------------------------------------------------------------------------------
+void FrequencyWindow()
+{
+  // The unit sphere: lambda = l (l + 1) with multiplicity 2 l + 1, omega = sqrt(l (l + 1)):
+  // 0, 1.41, 2.45, 3.46, ... The window [2, 3.2) holds l = 2 only: 5 harmonics, after 4.
+  const TriangleMesh sphere = Icosphere(4);
+  BasisOptions options;
+  options.LowerFrequency = 2.0;
+  options.UpperFrequency = 3.2;
+  const BasisResult window = ComputeBasis(sphere, options);
+  Check(window.FirstIndex == 4 && window.Pairs.Eigenvalues.size() == 5,
+    "window [2, 3.2) on the unit sphere: the 5 harmonics of l = 2, after 4 (" +
+      std::to_string(window.FirstIndex) + ", " + std::to_string(window.Pairs.Eigenvalues.size()) +
+      ")");
+  BasisOptions all;
+  all.NumberOfHarmonics = 9;
+  const BasisResult smallest = ComputeBasis(sphere, all);
+  CheckBelow(EigenvalueDifference(window.Pairs.Eigenvalues, smallest.Pairs.Eigenvalues.tail(5)),
+    1e-12,
+    "the window's eigenvalues are pairs 4 to 8 of the smallest");
+  CheckBelow((window.Pairs.Eigenvalues.array() - 6.0).abs().maxCoeff() / 6.0,
+    1e-2,
+    "they are l (l + 1) = 6 within the discretization error");
+  const DiscreteLaplacian ops = AssembleLaplacian(PrepareMesh(sphere), options.Operators);
+  CheckBelow(OrthonormalityError(window.Pairs.Eigenvectors, ops.Mass), 1e-10, "M-orthonormal");
+
+  // Scaled by 10, the same window in the new units (frequencies / 10) gives the same pairs.
+  TriangleMesh large = sphere;
+  large.Vertices *= 10.0;
+  options.LowerFrequency = 0.2;
+  options.UpperFrequency = 0.32;
+  const BasisResult scaled = ComputeBasis(large, options);
+  Check(scaled.FirstIndex == 4 && scaled.Pairs.Eigenvalues.size() == 5,
+    "the window is in the units of the mesh");
+
+  options.LowerFrequency = 2.5;
+  options.UpperFrequency = 2.6;
+  CheckThrows<InvalidInput>(
+    [&]() { ComputeBasis(sphere, options); }, "a window without an eigenvalue is refused");
+  options.LowerFrequency = 3.0;
+  options.UpperFrequency = 2.0;
+  CheckThrows<InvalidInput>([&]() { ComputeBasis(sphere, options); }, "an empty window is refused");
+}
+
+//------------------------------------------------------------------------------
+void EigenvaluesOnly()
+{
+  BasisOptions options;
+  options.NumberOfHarmonics = 20;
+  const BasisResult full = ComputeBasis(Icosphere(3), options);
+  options.EigenvaluesOnly = true;
+  const BasisResult spectrum = ComputeBasis(Icosphere(3), options);
+  Check(spectrum.Pairs.Eigenvectors.size() == 0, "no harmonics returned");
+  CheckBelow(EigenvalueDifference(spectrum.Pairs.Eigenvalues, full.Pairs.Eigenvalues),
+    0.0,
+    "the same verified eigenvalues");
+  CheckBelow((spectrum.LumpedMass - full.LumpedMass).cwiseAbs().maxCoeff(), 0.0, "the same mass");
+  // Without the output basis in the estimate, a limit between the two estimates passes.
+  const MemoryEstimate with = EstimateBasisMemory(642, 642, 20, 0, 8);
+  const MemoryEstimate without = EstimateBasisMemory(642, 642, 20, 0, 0);
+  options.MemoryLimit = (with.Total() + without.Total()) / 2;
+  ComputeBasis(Icosphere(3), options);
+  Check(true, "fits without the basis");
+  options.EigenvaluesOnly = false;
+  CheckThrows<InsufficientMemory>(
+    [&]() { ComputeBasis(Icosphere(3), options); }, "the same limit refuses the basis");
+}
+
 const Case Cases[] = {
   { "SameAsParts", SameAsParts },
   { "WarningsAndClamping", WarningsAndClamping },
@@ -564,6 +632,8 @@ const Case Cases[] = {
   { "DuplicateTriangles", DuplicateTriangles },
   { "ScanDefectsGiveABasis", ScanDefectsGiveABasis },
   { "ThreadsMatchOneThread", ThreadsMatchOneThread },
+  { "FrequencyWindow", FrequencyWindow },
+  { "EigenvaluesOnly", EigenvaluesOnly },
 };
 } // namespace
 

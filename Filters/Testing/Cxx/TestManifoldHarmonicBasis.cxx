@@ -408,6 +408,58 @@ bool TestMinimumComponentSize()
 }
 
 //------------------------------------------------------------------------------
+// EigenvaluesOnly: the spectrum and the mass without the harmonics array. FrequencyWindow: the
+// harmonics of l = 2 on the unit sphere (omega = sqrt(6)), after the 4 below.
+bool TestSpectrumOptions()
+{
+  auto sphere = MakeIcosphere(3, VTK_DOUBLE);
+  vtkNew<vtkManifoldHarmonicBasis> full;
+  full->SetInputData(sphere);
+  full->SetNumberOfHarmonics(9);
+  full->Update();
+  vtkNew<vtkManifoldHarmonicBasis> spectrum;
+  spectrum->SetInputData(sphere);
+  spectrum->SetNumberOfHarmonics(9);
+  spectrum->EigenvaluesOnlyOn();
+  spectrum->Update();
+  vtkDoubleArray* all = Eigenvalues(full->GetOutput());
+  vtkDoubleArray* only = Eigenvalues(spectrum->GetOutput());
+  bool ok = Check(all && only && !Harmonics(spectrum->GetOutput()) && Mass(spectrum->GetOutput()),
+    "EigenvaluesOnly: eigenvalues and mass, no harmonics");
+  double difference = 0.0;
+  for (vtkIdType k = 0; all && only && k < 9; ++k)
+  {
+    difference = std::max(difference, std::abs(all->GetValue(k) - only->GetValue(k)));
+  }
+  ok &= Check(difference == 0.0, "EigenvaluesOnly: the same eigenvalues");
+
+  vtkNew<vtkManifoldHarmonicBasis> window;
+  window->SetInputData(sphere);
+  window->SetFrequencyWindow(2.0, 3.2);
+  window->Update();
+  vtkDoubleArray* inside = Eigenvalues(window->GetOutput());
+  vtkDataArray* H = window->GetOutput()->GetPointData()->GetArray("ManifoldHarmonics");
+  ok &= Check(inside && inside->GetNumberOfTuples() == 5 && H && H->GetNumberOfComponents() == 5,
+    "FrequencyWindow [2, 3.2): the 5 harmonics of l = 2");
+  for (vtkIdType k = 0; inside && all && k < 5 && inside->GetNumberOfTuples() == 5; ++k)
+  {
+    ok &= Check(inside->GetValue(k) == all->GetValue(4 + k),
+      "FrequencyWindow: pair " + std::to_string(k) + " is pair " + std::to_string(4 + k));
+  }
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkTest::ErrorObserver> executiveErrors;
+  window->AddObserver(vtkCommand::ErrorEvent, errors);
+  window->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  window->SetFrequencyWindow(2.5, 2.6);
+  window->Update();
+  ok &= Check(errors->GetError() && window->GetOutput()->GetNumberOfPoints() == 0 &&
+      errors->GetErrorMessage().find("no eigenvalue lies in the frequency window") !=
+        std::string::npos,
+    "a window without an eigenvalue is an error with an empty output");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // More harmonics than points: clamped with a warning. Empty input: passed through.
 bool TestClampAndEmpty()
 {
@@ -563,6 +615,7 @@ int TestManifoldHarmonicBasis(int, char*[])
   ok &= TestUnusedPoints();
   ok &= TestClampAndEmpty();
   ok &= TestMinimumComponentSize();
+  ok &= TestSpectrumOptions();
   ok &= TestBasisPrecision();
   ok &= TestMemoryGuard();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;

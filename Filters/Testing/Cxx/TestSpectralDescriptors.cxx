@@ -229,6 +229,44 @@ bool TestShapeDNA()
 }
 
 //------------------------------------------------------------------------------
+// A basis computed with EigenvaluesOnly (no harmonics) gives the same ShapeDNA; the point
+// descriptors, which need the harmonics, are refused with an error saying why.
+bool TestShapeDNAFromEigenvaluesOnly()
+{
+  vtkNew<vtkSpectralDescriptors> full;
+  full->SetInputData(SphereBasis(1.0, 16));
+  full->Update();
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(40);
+  sphere->SetPhiResolution(40);
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputConnection(sphere->GetOutputPort());
+  basis->SetNumberOfHarmonics(16);
+  basis->EigenvaluesOnlyOn();
+  vtkNew<vtkSpectralDescriptors> spectrum;
+  spectrum->SetInputConnection(basis->GetOutputPort());
+  spectrum->ComputeHeatKernelSignatureOff();
+  spectrum->Update();
+  vtkDataArray* a =
+    vtkDataArray::SafeDownCast(full->GetShapeDNAOutput()->GetColumnByName("ScaledEigenvalue"));
+  vtkDataArray* b =
+    vtkDataArray::SafeDownCast(spectrum->GetShapeDNAOutput()->GetColumnByName("ScaledEigenvalue"));
+  bool ok = Check(a && b && RelativeDifference(b, a) == 0.0,
+    "ShapeDNA from an EigenvaluesOnly basis differs from the full basis's");
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkTest::ErrorObserver> executiveErrors;
+  spectrum->AddObserver(vtkCommand::ErrorEvent, errors);
+  spectrum->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  spectrum->ComputeHeatKernelSignatureOn();
+  spectrum->Update();
+  ok &= Check(
+    errors->GetError() && errors->GetErrorMessage().find("EigenvaluesOnly") != std::string::npos,
+    "point descriptors on an EigenvaluesOnly basis are not refused with a reason");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // A float basis changes the descriptors by float round-off: 1e-6 of each array's largest value.
 // On an ellipsoid, whose eigenvalues are simple: the global point signature depends on the
 // harmonics themselves, which a multiple eigenvalue (the sphere's) leaves free to rotate.
@@ -388,6 +426,7 @@ int TestSpectralDescriptors(int, char*[])
   ok &= TestRigidMotion();
   ok &= TestDistances();
   ok &= TestShapeDNA();
+  ok &= TestShapeDNAFromEigenvaluesOnly();
   ok &= TestFloatBasis();
   ok &= TestErrors();
   ok &= TestWarnings();
