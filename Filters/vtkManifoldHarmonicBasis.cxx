@@ -158,6 +158,15 @@ void AddBasisArrays(vtkPolyData* output,
   eigenvalues->SetNumberOfTuples(m);
   std::copy(result.Eigenvalues.data(), result.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
   output->GetFieldData()->AddArray(eigenvalues);
+  for (const auto& figure :
+    { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
+      std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual) })
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(figure.first);
+    array->InsertNextValue(figure.second);
+    output->GetFieldData()->AddArray(array);
+  }
 }
 
 //------------------------------------------------------------------------------

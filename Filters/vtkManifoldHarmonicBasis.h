@@ -15,8 +15,8 @@
  * vertices and lines are ignored. Triangles of numerically zero area are left out, and points
  * that no remaining triangle uses get zero harmonics and zero mass.
  *
- * The output is a shallow copy of the input with three new arrays (names from the static
- * accessors below):
+ * The output is a shallow copy of the input with new arrays (names from the static accessors
+ * below):
  * - point data HarmonicsArrayName() ("ManifoldHarmonics"): vtkDoubleArray (vtkFloatArray with
  *   BasisPrecision FLOAT) with m components named Phi_0, Phi_1, ...; tuple i holds the value of
  *   every harmonic at point i. With the default LUMPED mass the harmonics are M-orthonormal:
@@ -28,6 +28,10 @@
  *   product, so they never re-assemble the operators.
  * - field data EigenvaluesArrayName() ("ManifoldHarmonicsEigenvalues"): vtkDoubleArray with m
  *   tuples, the eigenvalues in ascending order.
+ * - field data "ManifoldHarmonicsBackwardError" and "ManifoldHarmonicsResidual": one value each,
+ *   the largest componentwise backward error and relative residual of the pairs. A pair is
+ *   accepted when either is at most 1e-8: it is then an exact eigenpair of operators within
+ *   1e-8 of the assembled ones, entry by entry (spectral::BackwardErrors), or its residual is.
  *
  * Parameters: NumberOfHarmonics (default DEFAULT_NUMBER_OF_HARMONICS), MassMatrix (default LUMPED),
  * Laplacian (default COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles),

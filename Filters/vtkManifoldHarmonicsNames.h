@@ -22,6 +22,11 @@ constexpr const char* Harmonics = "ManifoldHarmonics";
 constexpr const char* Mass = "ManifoldHarmonicsMass";
 /// Field data of vtkManifoldHarmonicBasis: m values, the eigenvalues in ascending order.
 constexpr const char* Eigenvalues = "ManifoldHarmonicsEigenvalues";
+/// Field data of vtkManifoldHarmonicBasis: one value each, the largest componentwise backward
+/// error and the largest relative residual of the returned pairs (spectral::BackwardErrors,
+/// spectral::RelativeResiduals).
+constexpr const char* BackwardError = "ManifoldHarmonicsBackwardError";
+constexpr const char* Residual = "ManifoldHarmonicsResidual";
 
 /// The signal name of the point coordinates (hence `Points_Coefficients`).
 constexpr const char* Points = "Points";

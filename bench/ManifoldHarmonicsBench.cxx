@@ -284,7 +284,7 @@ int RunCase(const Settings& settings, int n, int m)
     }
   }
 
-  std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e%s\n",
+  std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e %8.1e%s\n",
     static_cast<int>(L.rows()),
     m,
     total,
@@ -297,6 +297,7 @@ int RunCase(const Settings& settings, int n, int m)
     result.Bands,
     result.OperatorApplications,
     result.MaxResidual,
+    result.MaxBackwardError,
     orthogonality,
     (filter + scipy).c_str());
   std::fflush(stdout);
@@ -399,7 +400,7 @@ Settings Parse(int argc, char* argv[])
 int main(int argc, char* argv[])
 {
   const Settings settings = Parse(argc, argv);
-  std::printf("%8s %6s %8s %7s %7s %7s %7s %7s %7s %5s %7s %8s %8s\n",
+  std::printf("%8s %6s %8s %7s %7s %7s %7s %7s %7s %5s %7s %8s %8s %8s\n",
     "n",
     "m",
     "wall[s]",
@@ -412,6 +413,7 @@ int main(int argc, char* argv[])
     "bands",
     "applies",
     "residual",
+    "backward",
     "orthog");
   int failures = 0;
   for (const auto& c : settings.Cases)

@@ -513,6 +513,36 @@ void ScanDefectsGiveABasis()
     const DiscreteLaplacian ops = AssembleLaplacian(PrepareMesh(mesh), options.Operators);
     CheckBelow(
       OrthonormalityError(basis.Pairs.Eigenvectors, ops.Mass), 1e-10, name + "M-orthonormal");
+    CheckBelow(basis.Pairs.MaxBackwardError,
+      options.Solver.BackwardErrorTolerance,
+      name + "componentwise backward error");
+    // An independent solve: CHOLMOD's simplicial factorization and Spectra's Lanczos.
+    BasisOptions reference = options;
+    reference.Solver.Factorization = FactorizationMethod::Simplicial;
+    reference.Solver.Method = LanczosMethod::Spectra;
+    const BasisResult other = ComputeBasis(mesh, reference);
+    // To 1e-8 where the backward errors allow: a pair exact for a pencil within omega of
+    // (L, M) entry by entry has its eigenvalue within omega kappa, kappa = (|h|^T |L| |h| +
+    // lambda |h|^T |M| |h|) / lambda (first order, h^T M h = 1).
+    const Vector omega = BackwardErrors(ops.Stiffness, ops.Mass, lambda, basis.Pairs.Eigenvectors);
+    const Vector omegaOther =
+      BackwardErrors(ops.Stiffness, ops.Mass, other.Pairs.Eigenvalues, other.Pairs.Eigenvectors);
+    const SparseMatrix absL = ops.Stiffness.cwiseAbs();
+    const SparseMatrix absM = ops.Mass.cwiseAbs();
+    double worst = 0.0;
+    for (Eigen::Index k = 201; k < lambda.size(); ++k)
+    {
+      const Vector h = basis.Pairs.Eigenvectors.col(k).cwiseAbs();
+      const double kappa = (h.dot(absL * h) + lambda[k] * h.dot(absM * h)) / lambda[k];
+      const double allowed = std::max(1e-8, 2.0 * (omega[k] + omegaOther[k]) * kappa);
+      worst =
+        std::max(worst, std::abs(lambda[k] - other.Pairs.Eigenvalues[k]) / lambda[k] / allowed);
+    }
+    CheckBelow(worst,
+      1.0,
+      name +
+        "non-zero eigenvalues equal an independent solve's, to max(1e-8, the backward "
+        "errors' bound) (ratio)");
   }
 }
 

@@ -507,6 +507,14 @@ int BlockLanczosBand::Verified(const Eigen::Ref<const DenseMatrix>& X,
   double reference,
   std::vector<Eigen::Index>& nearest) const
 {
+  // The backward errors of the pairs: |L| |X| and |M| |X|, with L the band's stiffness
+  // (L - sigma M) + sigma M.
+  BackwardScale backward;
+  backward.Tolerance = 0.5 * this->Options.BackwardErrorTolerance;
+  const SparseMatrix stiffness = this->Factor.ShiftedMatrix() + this->Sigma * this->M.Matrix;
+  const DenseMatrix absX = X.cwiseAbs();
+  backward.AbsLX = stiffness.cwiseAbs() * absX;
+  backward.AbsMX = this->M.Identity ? absX : DenseMatrix(this->M.Matrix.cwiseAbs() * absX);
   return Verify(AX,
     this->MassX(X, MX),
     shifted,
@@ -514,7 +522,8 @@ int BlockLanczosBand::Verified(const Eigen::Ref<const DenseMatrix>& X,
     this->Sigma,
     reference,
     0.5 * this->Options.ResidualTolerance,
-    nearest);
+    nearest,
+    backward);
 }
 
 //------------------------------------------------------------------------------

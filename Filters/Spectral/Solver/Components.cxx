@@ -84,6 +84,7 @@ int FirstRequest(const Block& block, double totalArea, int m)
 void AddStatistics(EigenResult& total, const EigenResult& part)
 {
   total.MaxResidual = std::max(total.MaxResidual, part.MaxResidual);
+  total.MaxBackwardError = std::max(total.MaxBackwardError, part.MaxBackwardError);
   total.Bands += part.Bands;
   total.Factorizations += part.Factorizations;
   total.OperatorApplications += part.OperatorApplications;
@@ -184,7 +185,17 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
     }
   }
 
-  const std::vector<Member> smallest = Smallest(blocks, m);
+  // Which pairs: by the sort key. In what order: by the computed eigenvalues, ascending (the
+  // zero eigenvalues of different components differ by round-off, in either direction).
+  std::vector<Member> smallest = Smallest(blocks, m);
+  const auto value = [&blocks](const Member& member)
+  {
+    return blocks[static_cast<std::size_t>(std::get<2>(member))]
+      .Pairs.Eigenvalues[std::get<3>(member)];
+  };
+  std::stable_sort(smallest.begin(),
+    smallest.end(),
+    [&value](const Member& a, const Member& b) { return value(a) < value(b); });
   result.Eigenvalues.resize(static_cast<Eigen::Index>(smallest.size()));
   result.Eigenvectors = DenseMatrix::Zero(L.rows(), result.Eigenvalues.size());
   for (std::size_t j = 0; j < smallest.size(); ++j)

@@ -48,7 +48,7 @@ using PairSolver = std::function<
  * \param solve The solver of one component.
  * \param monitor Progress in [0, 1] over all components, and cancellation.
  * \return Eigenvalues ascending, eigenvectors n by m, each zero outside its component; the
- *         statistics summed (MaxResidual: the largest). The zero eigenvalues (the first of each
+ *         statistics summed (MaxResidual and MaxBackwardError: the largest). The zero eigenvalues (the first of each
  *         component) come first, the largest components' first, so that when m is below the
  *         number of components the basis describes the largest ones.
  */

@@ -177,7 +177,7 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
     ? SolveDensely(L, M, options, monitor)
     : SolveByBands(L, M, options, monitor);
   NormalizeSigns(result.Eigenvectors);
-  detail::CheckResiduals(L, M, options.ResidualTolerance, result);
+  detail::CheckResiduals(L, M, options, result);
   monitor.Report(1.0);
   return result;
 }

@@ -60,6 +60,14 @@ struct EigenOptions
   int MaxIterations = 1000;
   /// Largest relative residual a returned pair may have (see RelativeResiduals).
   double ResidualTolerance = 1e-8;
+  /**
+   * Largest componentwise backward error a returned pair may have when its relative residual
+   * exceeds ResidualTolerance (see BackwardErrors): a pair is accepted when either measure is
+   * within its tolerance. The backward error does not weigh rows by 1 / D_ii, so rounding in the
+   * rows of tiny points (a range scan's near-coincident points) does not count against it. 0
+   * leaves the relative residual alone to decide.
+   */
+  double BackwardErrorTolerance = 1e-8;
   /// Problems with at most this many unknowns (or with m > n / 3) are solved densely.
   int DenseThreshold = 1000;
   /// The iteration within each band.
@@ -96,6 +104,8 @@ struct EigenResult
   DenseMatrix Eigenvectors;
   /// Largest entry of RelativeResiduals over the returned pairs.
   double MaxResidual = 0.0;
+  /// Largest entry of BackwardErrors over the returned pairs.
+  double MaxBackwardError = 0.0;
   /// Number of bands (shift-invert Lanczos runs), 0 for the dense path.
   int Bands = 0;
   /// Number of LDL^T factorizations (bands, retries and the final inertia check).
@@ -117,7 +127,8 @@ struct EigenResult
  * \return Eigenvalues ascending, eigenvectors M-orthonormal with a deterministic sign.
  * \throws InvalidInput if the sizes disagree or m is not in [1, n].
  * \throws SolverFailure if a band does not converge, a factorization fails, an inertia count
- *         disagrees with the eigenvalues found, or a residual exceeds ResidualTolerance.
+ *         disagrees with the eigenvalues found, or a pair has both a relative residual above
+ *         ResidualTolerance and a backward error above BackwardErrorTolerance.
  * \throws Cancelled if monitor.Cancelled returned true.
  */
 EigenResult SmallestEigenpairs(const SparseMatrix& L,
@@ -134,6 +145,22 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
  * least 1e-6 trace(L) / trace(M), which only matters when no non-zero eigenvalue is returned.
  */
 Vector RelativeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi);
+
+/**
+ * Componentwise (Oettli-Prager) backward errors of eigenpairs: for each k,
+ * max_i |r_i| / d_i with r = L h_k - lambda_k M h_k and d = |L| |h_k| + |lambda_k| |M| |h_k|: the
+ * smallest eps such that (h_k, lambda_k) is an exact eigenpair of a pencil (L + dL, M + dM) with
+ * |dL| <= eps |L| and |dM| <= eps |M| entry by entry. Each d_i is floored at
+ * BackwardErrorFloor (Verification.h) times the largest, so that rows where the harmonic and
+ * its neighbours vanish are measured against the vector's scale, where their rounding lives.
+ * Invariant under a diagonal scaling of the rows, it measures a pair against the data's own
+ * precision, where the relative residual (RelativeResiduals) punishes rounding in rows of tiny
+ * mass.
+ */
+Vector BackwardErrors(const SparseMatrix& L,
   const SparseMatrix& M,
   const Vector& lambda,
   const DenseMatrix& Phi);

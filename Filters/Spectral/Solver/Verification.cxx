@@ -23,7 +23,8 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
   double sigma,
   double reference,
   double tolerance,
-  std::vector<Eigen::Index>& nearest)
+  std::vector<Eigen::Index>& nearest,
+  const BackwardScale& backward)
 {
   const Eigen::Index count = shifted.size();
   nearest.resize(static_cast<std::size_t>(count));
@@ -40,9 +41,12 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
   {
     const Eigen::Index k = nearest[static_cast<std::size_t>(verified)];
     const double lambda = sigma + shifted[k];
-    const double residual =
-      std::sqrt((AX.col(k) - shifted[k] * MX.col(k)).cwiseAbs2().dot(inverseMass));
-    if (residual > tolerance * std::max(std::abs(lambda), reference))
+    const Vector r = AX.col(k) - shifted[k] * MX.col(k);
+    const double residual = std::sqrt(r.cwiseAbs2().dot(inverseMass));
+    if (residual > tolerance * std::max(std::abs(lambda), reference) &&
+      (backward.AbsLX.cols() == 0 ||
+        !(ComponentwiseBackwardError(r, backward.AbsLX.col(k), backward.AbsMX.col(k), lambda) <=
+          backward.Tolerance)))
     {
       break;
     }
@@ -52,23 +56,50 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
 }
 
 //------------------------------------------------------------------------------
+double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,
+  const Eigen::Ref<const Vector>& absLx,
+  const Eigen::Ref<const Vector>& absMx,
+  double lambda)
+{
+  const Vector scale = absLx + std::abs(lambda) * absMx;
+  const double floor = BackwardErrorFloor * (scale.size() ? scale.maxCoeff() : 0.0);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+  {
+    const double error = std::abs(r[i]);
+    if (error > 0.0)
+    {
+      const double denominator = std::max(scale[i], floor);
+      worst = std::max(
+        worst, denominator > 0.0 ? error / denominator : std::numeric_limits<double>::infinity());
+    }
+  }
+  return worst;
+}
+
+//------------------------------------------------------------------------------
 void CheckResiduals(const SparseMatrix& L,
   const SparseMatrix& M,
-  double tolerance,
+  const EigenOptions& options,
   EigenResult& result)
 {
   const Clock::time_point start = Clock::now();
   const Vector residuals = RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors);
+  const Vector backward = BackwardErrors(L, M, result.Eigenvalues, result.Eigenvectors);
   result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
+  result.MaxBackwardError = backward.size() ? backward.maxCoeff() : 0.0;
   result.Seconds.Verification += SecondsSince(start);
-  if (!(result.MaxResidual <= tolerance))
+  for (Eigen::Index k = 0; k < residuals.size(); ++k)
   {
-    Eigen::Index worst = 0;
-    residuals.maxCoeff(&worst);
-    throw SolverFailure("eigenpair " + std::to_string(worst) +
-        " (lambda = " + Str(result.Eigenvalues[worst]) + ") has relative residual " +
-        Str(result.MaxResidual) + ", above the tolerance " + Str(tolerance),
-      static_cast<int>(result.Eigenvalues.size()));
+    if (!(residuals[k] <= options.ResidualTolerance) &&
+      !(backward[k] <= options.BackwardErrorTolerance))
+    {
+      throw SolverFailure("eigenpair " + std::to_string(k) + " (lambda = " +
+          Str(result.Eigenvalues[k]) + ") has relative residual " + Str(residuals[k]) +
+          " and backward error " + Str(backward[k]) + ", above the tolerances " +
+          Str(options.ResidualTolerance) + " and " + Str(options.BackwardErrorTolerance),
+        static_cast<int>(result.Eigenvalues.size()));
+    }
   }
 }
 } // namespace detail
@@ -124,6 +155,34 @@ Vector RelativeResiduals(const SparseMatrix& L,
         }
       }
     });
+  return out;
+}
+
+//------------------------------------------------------------------------------
+Vector BackwardErrors(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi)
+{
+  const SparseMatrix absL = L.cwiseAbs();
+  const SparseMatrix absM = M.cwiseAbs();
+  Vector out(lambda.size());
+  const Eigen::Index block = 32;
+  for (Eigen::Index first = 0; first < lambda.size(); first += block)
+  {
+    const Eigen::Index count = std::min(block, lambda.size() - first);
+    const auto part = Phi.middleCols(first, count);
+    const DenseMatrix absPart = part.cwiseAbs();
+    DenseMatrix R = L * part;
+    R -= (M * part) * lambda.segment(first, count).asDiagonal();
+    const DenseMatrix absLX = absL * absPart;
+    const DenseMatrix absMX = absM * absPart;
+    for (Eigen::Index j = 0; j < count; ++j)
+    {
+      out[first + j] =
+        detail::ComponentwiseBackwardError(R.col(j), absLX.col(j), absMX.col(j), lambda[first + j]);
+    }
+  }
   return out;
 }
 

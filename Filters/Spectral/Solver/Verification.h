@@ -25,10 +25,36 @@ namespace spectral
 namespace detail
 {
 /**
+ * What the componentwise backward errors of Ritz pairs X need besides their residuals:
+ * AbsLX = |L| |X| and AbsMX = |M| |X|, and the tolerance (EigenOptions::BackwardErrorTolerance).
+ * Empty matrices leave the backward error out.
+ */
+struct BackwardScale
+{
+  DenseMatrix AbsLX;
+  DenseMatrix AbsMX;
+  double Tolerance = 0.0;
+};
+
+/**
+ * The floor of the denominators of BackwardErrors, relative to their largest: where a harmonic
+ * and its neighbours vanish (its nodal lines, a flat grid's symmetry lines), |L| |h| is itself
+ * round-off, and the pair is measured against the scale of the whole vector instead.
+ */
+constexpr double BackwardErrorFloor = 1e-6;
+
+/// The componentwise backward error of column k given its residual r (see BackwardErrors).
+double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,
+  const Eigen::Ref<const Vector>& absLx,
+  const Eigen::Ref<const Vector>& absMx,
+  double lambda);
+
+/**
  * Check the true residuals of Ritz pairs (x_k, sigma + shifted_k), given AX = (L - sigma M) X and
  * MX = M X: sets `nearest` to the pairs ordered by distance from the shift and returns how many
  * of the first of them have a relative residual (D^-1 norm, relative to
- * max(|lambda|, reference)) within `tolerance`.
+ * max(|lambda|, reference)) within `tolerance`, or a componentwise backward error within
+ * backward.Tolerance.
  */
 int Verify(const Eigen::Ref<const DenseMatrix>& AX,
   const Eigen::Ref<const DenseMatrix>& MX,
@@ -37,17 +63,19 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
   double sigma,
   double reference,
   double tolerance,
-  std::vector<Eigen::Index>& nearest);
+  std::vector<Eigen::Index>& nearest,
+  const BackwardScale& backward);
 
 /**
- * The final check of SmallestEigenpairs: sets result.MaxResidual to the largest of
- * RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors) and adds its time to
+ * The final check of SmallestEigenpairs: sets result.MaxResidual and result.MaxBackwardError to
+ * the largest of RelativeResiduals and BackwardErrors of the returned pairs and adds its time to
  * result.Seconds.Verification.
- * \throws SolverFailure if it exceeds `tolerance` (EigenOptions::ResidualTolerance).
+ * \throws SolverFailure if a pair exceeds both options.ResidualTolerance and
+ *         options.BackwardErrorTolerance.
  */
 void CheckResiduals(const SparseMatrix& L,
   const SparseMatrix& M,
-  double tolerance,
+  const EigenOptions& options,
   EigenResult& result);
 } // namespace detail
 } // namespace spectral

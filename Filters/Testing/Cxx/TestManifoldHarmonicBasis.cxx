@@ -432,6 +432,13 @@ bool TestSpectrumOptions()
     difference = std::max(difference, std::abs(all->GetValue(k) - only->GetValue(k)));
   }
   ok &= Check(difference == 0.0, "EigenvaluesOnly: the same eigenvalues");
+  for (const char* name : { "ManifoldHarmonicsBackwardError", "ManifoldHarmonicsResidual" })
+  {
+    vtkDataArray* figure = full->GetOutput()->GetFieldData()->GetArray(name);
+    ok &= Check(figure && figure->GetNumberOfTuples() == 1 && figure->GetTuple1(0) >= 0.0 &&
+        figure->GetTuple1(0) <= 1e-8,
+      std::string(name) + ": one value, within the acceptance tolerance 1e-8");
+  }
 
   vtkNew<vtkManifoldHarmonicBasis> window;
   window->SetInputData(sphere);
