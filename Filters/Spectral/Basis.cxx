@@ -36,10 +36,10 @@ int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisRes
   {
     return requested;
   }
-  const std::string text = "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
-    std::to_string(usable) + ", the number of points triangles use.";
-  result.Warnings.push_back(text);
-  monitor.Warn(text);
+  Report({ "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
+           std::to_string(usable) + ", the number of points triangles use." },
+    monitor,
+    result);
   return usable;
 }
 

@@ -110,8 +110,6 @@ EigenResult SolveDensely(const SparseMatrix& L,
   const EigenOptions& options,
   const Monitor& monitor)
 {
-  // Every part of the solve that is asked for 0 threads uses options.Threads.
-  const ScopedThreadLimit threads(options.Threads);
   const Eigen::Index n = L.rows();
   const int m = options.NumberOfEigenpairs;
   if (n > 20000)

@@ -84,8 +84,9 @@ void CheckResiduals(const SparseMatrix& L,
   EigenResult& result)
 {
   const Clock::time_point start = Clock::now();
-  const Vector residuals = RelativeResiduals(L, M, result.Eigenvalues, result.Eigenvectors);
-  const Vector backward = BackwardErrors(L, M, result.Eigenvalues, result.Eigenvectors);
+  const PairFigures figures = ResidualFigures(L, M, result.Eigenvalues, result.Eigenvectors, true);
+  const Vector& residuals = figures.Relative;
+  const Vector& backward = figures.Backward;
   result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
   result.MaxBackwardError = backward.size() ? backward.maxCoeff() : 0.0;
   result.Seconds.Verification += SecondsSince(start);
@@ -102,13 +103,13 @@ void CheckResiduals(const SparseMatrix& L,
     }
   }
 }
-} // namespace detail
 
 //------------------------------------------------------------------------------
-Vector RelativeResiduals(const SparseMatrix& L,
+PairFigures ResidualFigures(const SparseMatrix& L,
   const SparseMatrix& M,
   const Vector& lambda,
-  const DenseMatrix& Phi)
+  const DenseMatrix& Phi,
+  bool backward)
 {
   const Vector rowSums = M * Vector::Ones(M.cols());
   const Vector inverseMass = rowSums.cwiseInverse();
@@ -125,11 +126,15 @@ Vector RelativeResiduals(const SparseMatrix& L,
   // fall back to a small fraction of the operator's scale, the ratio of the traces.
   const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
   reference = std::max(reference, 1e-6 * traceRatio);
+  const SparseMatrix absL = backward ? SparseMatrix(L.cwiseAbs()) : SparseMatrix();
+  const SparseMatrix absM = backward ? SparseMatrix(M.cwiseAbs()) : SparseMatrix();
   // A block of columns at a time: the residuals of all m pairs at once would take twice the
   // memory of the basis. The threads take a range of columns each (the sparse products are
-  // single-threaded), each with its own two blocks; no more threads than keep these blocks
+  // single-threaded), each with its own blocks; no more threads than keep these blocks
   // within half the memory of the basis (one per 128 columns).
-  Vector out(lambda.size());
+  PairFigures out;
+  out.Relative.resize(lambda.size());
+  out.Backward.resize(backward ? lambda.size() : 0);
   const Eigen::Index block = 32;
   const int parts = static_cast<int>(std::max<Eigen::Index>(
     1, std::min<Eigen::Index>(BlockThreads(Phi.rows()), lambda.size() / 128)));
@@ -139,6 +144,8 @@ Vector RelativeResiduals(const SparseMatrix& L,
     {
       DenseMatrix R(Phi.rows(), std::min(block, columns));
       DenseMatrix MPhi(Phi.rows(), R.cols());
+      DenseMatrix absLX;
+      DenseMatrix absMX;
       for (Eigen::Index first = begin; first < begin + columns; first += block)
       {
         const Eigen::Index count = std::min(block, begin + columns - first);
@@ -146,16 +153,37 @@ Vector RelativeResiduals(const SparseMatrix& L,
         R.leftCols(count).noalias() = L * part;
         MPhi.leftCols(count).noalias() = M * part;
         R.leftCols(count) -= MPhi.leftCols(count) * lambda.segment(first, count).asDiagonal();
+        if (backward)
+        {
+          const DenseMatrix absPart = part.cwiseAbs();
+          absLX.noalias() = absL * absPart;
+          absMX.noalias() = absM * absPart;
+        }
         for (Eigen::Index j = 0; j < count; ++j)
         {
           const Eigen::Index k = first + j;
           const double norm = std::sqrt(R.col(j).cwiseAbs2().dot(inverseMass));
-          out[k] =
+          out.Relative[k] =
             norm / std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
+          if (backward)
+          {
+            out.Backward[k] =
+              ComponentwiseBackwardError(R.col(j), absLX.col(j), absMX.col(j), lambda[k]);
+          }
         }
       }
     });
   return out;
+}
+} // namespace detail
+
+//------------------------------------------------------------------------------
+Vector RelativeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi)
+{
+  return detail::ResidualFigures(L, M, lambda, Phi, false).Relative;
 }
 
 //------------------------------------------------------------------------------
@@ -164,26 +192,7 @@ Vector BackwardErrors(const SparseMatrix& L,
   const Vector& lambda,
   const DenseMatrix& Phi)
 {
-  const SparseMatrix absL = L.cwiseAbs();
-  const SparseMatrix absM = M.cwiseAbs();
-  Vector out(lambda.size());
-  const Eigen::Index block = 32;
-  for (Eigen::Index first = 0; first < lambda.size(); first += block)
-  {
-    const Eigen::Index count = std::min(block, lambda.size() - first);
-    const auto part = Phi.middleCols(first, count);
-    const DenseMatrix absPart = part.cwiseAbs();
-    DenseMatrix R = L * part;
-    R -= (M * part) * lambda.segment(first, count).asDiagonal();
-    const DenseMatrix absLX = absL * absPart;
-    const DenseMatrix absMX = absM * absPart;
-    for (Eigen::Index j = 0; j < count; ++j)
-    {
-      out[first + j] =
-        detail::ComponentwiseBackwardError(R.col(j), absLX.col(j), absMX.col(j), lambda[first + j]);
-    }
-  }
-  return out;
+  return detail::ResidualFigures(L, M, lambda, Phi, true).Backward;
 }
 
 //------------------------------------------------------------------------------

@@ -66,6 +66,25 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
   std::vector<Eigen::Index>& nearest,
   const BackwardScale& backward);
 
+/// The two measures of a set of eigenpairs, one entry per pair.
+struct PairFigures
+{
+  /// RelativeResiduals.
+  Vector Relative;
+  /// BackwardErrors; empty unless asked for.
+  Vector Backward;
+};
+
+/**
+ * RelativeResiduals and, if `backward`, BackwardErrors of the pairs in one pass over them (each
+ * block of residuals is formed once for both).
+ */
+PairFigures ResidualFigures(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const Vector& lambda,
+  const DenseMatrix& Phi,
+  bool backward);
+
 /**
  * The final check of SmallestEigenpairs: sets result.MaxResidual and result.MaxBackwardError to
  * the largest of RelativeResiduals and BackwardErrors of the returned pairs and adds its time to
