@@ -281,8 +281,10 @@ public:
   /**
    * Compute and verify the eigenvalues but do not store the n x m harmonics: the output has the
    * eigenvalues and the mass only (for ShapeDNA with vtkSpectralDescriptors), and the memory
-   * check leaves the output basis out. The eigensolver still holds its own double eigenvectors
-   * while it runs. Not available in distributed runs yet (an error says so). Default is false.
+   * check leaves the output basis out. The eigensolver keeps only the vectors of its last bands
+   * (it verifies the older pairs before it lets their vectors go), so its memory does not grow
+   * with the number of harmonics. Not available in distributed runs yet (an error says so).
+   * Default is false.
    */
   vtkSetMacro(EigenvaluesOnly, bool);
   vtkGetMacro(EigenvaluesOnly, bool);
@@ -293,9 +295,9 @@ public:
   /**
    * A frequency window [lower, upper) in the units of the mesh: when upper > 0, the harmonics
    * whose frequency omega = sqrt(lambda) lies in it are computed instead of the
-   * NumberOfHarmonics smallest. Two inertia counts prove how many there are (none missing); they
-   * are computed as the smallest ones up to the upper end, so the cost is that of all the
-   * harmonics below it. An empty window, or one without an eigenvalue, is an error.
+   * NumberOfHarmonics smallest. Two inertia counts prove how many there are (none missing); the
+   * solver's bands start at the lower end, so the harmonics below it are not computed. An empty
+   * window, or one without an eigenvalue, is an error.
    * Default is (0, 0): off.
    */
   vtkSetVector2Macro(FrequencyWindow, double);

@@ -51,7 +51,8 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
     static_cast<std::uint64_t>(used),
     m,
     options.Solver.BandSize,
-    options.EigenvaluesOnly ? 0 : options.BytesPerValue);
+    options.EigenvaluesOnly ? 0 : options.BytesPerValue,
+    !options.EigenvaluesOnly);
   const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
   if (available != 0 && need.Total() > available)
   {
@@ -98,12 +99,16 @@ struct Fallbacks
 // residual of 1e-4 the eigenpairs would be meaningless: the failure is passed on with why.
 EigenResult SolveWithFallbacks(const SparseMatrix& L,
   const SparseMatrix& M,
-  int wanted,
+  const PairRequest& request,
   const Monitor& monitor,
   Fallbacks& state)
 {
   EigenOptions options = state.Options;
-  options.NumberOfEigenpairs = (wanted == 1 && L.rows() > 1) ? 2 : wanted;
+  const int wanted = request.Count;
+  options.NumberOfEigenpairs =
+    (wanted == 1 && request.StartIndex == 0 && L.rows() > 1) ? 2 : wanted;
+  options.StartIndex = request.StartIndex;
+  options.StartValue = request.StartValue;
   EigenResult result;
   try
   {
@@ -142,7 +147,10 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
   if (result.Eigenvalues.size() > wanted)
   {
     result.Eigenvalues.conservativeResize(wanted);
-    result.Eigenvectors.conservativeResize(Eigen::NoChange, wanted);
+    if (result.Eigenvectors.cols() > wanted)
+    {
+      result.Eigenvectors.conservativeResize(Eigen::NoChange, wanted);
+    }
   }
   return result;
 }
@@ -238,18 +246,6 @@ std::pair<int, int> WindowCounts(const DiscreteLaplacian& ops,
 }
 
 //------------------------------------------------------------------------------
-// Keeps the pairs [first, end) of the result.
-void KeepPairs(EigenResult& pairs, int first, int end)
-{
-  const int count = end - first;
-  pairs.Eigenvalues = Vector(pairs.Eigenvalues.segment(first, count));
-  if (pairs.Eigenvectors.cols() > 0)
-  {
-    pairs.Eigenvectors = DenseMatrix(pairs.Eigenvectors.middleCols(first, count));
-  }
-}
-
-//------------------------------------------------------------------------------
 // The power of two nearest the diameter of the points (1 for a single point): dividing the
 // coordinates by it is exact, and makes the solve independent of the mesh's units.
 double UnitScale(const Points& points)
@@ -313,7 +309,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   if (window)
   {
     pairs = WindowCounts(ops, options, s);
-    m = pairs.second;
+    m = pairs.second - pairs.first;
     if (options.CheckMemory)
     {
       CheckMemory(mesh, used, m, options);
@@ -328,28 +324,48 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   monitor.Begin("Eigensolve");
   Fallbacks state;
   state.Options = options.Solver;
+  state.Options.KeepEigenvectors = !options.EigenvaluesOnly;
   state.Diameter = ops.Diameter;
   state.Warnings = &monitor;
   state.Basis = &result;
   const PairSolver solve =
-    [&state](const SparseMatrix& L, const SparseMatrix& M, int k, const Monitor& part)
-  { return SolveWithFallbacks(L, M, k, part, state); };
-  result.Pairs = SmallestEigenpairsByComponent(ops.Stiffness,
-    ops.Mass,
-    ops.LumpedMass,
-    ops.Components.Label,
-    ops.Components.Count,
-    m,
-    solve,
-    monitor.Scaled(0.1, 1.0));
+    [&state](
+      const SparseMatrix& L, const SparseMatrix& M, const PairRequest& request, const Monitor& part)
+  { return SolveWithFallbacks(L, M, request, part, state); };
+  if (window)
+  {
+    // Each component from the lower end of the window up: the bands start there.
+    const double low = options.LowerFrequency * s;
+    const double high = options.UpperFrequency * s;
+    result.Pairs = EigenpairsInWindowByComponent(ops.Stiffness,
+      ops.Mass,
+      ops.Components.Label,
+      ops.Components.Count,
+      low * low,
+      high * high,
+      solve,
+      result.FirstIndex,
+      monitor.Scaled(0.1, 1.0));
+  }
+  else
+  {
+    result.Pairs = SmallestEigenpairsByComponent(ops.Stiffness,
+      ops.Mass,
+      ops.LumpedMass,
+      ops.Components.Label,
+      ops.Components.Count,
+      m,
+      solve,
+      monitor.Scaled(0.1, 1.0));
+  }
   result.Pairs.Eigenvalues /= s * s;
   result.Pairs.Eigenvectors /= s;
   result.LumpedMass = ops.LumpedMass * (s * s);
   result.InputPointIds = std::move(ops.InputPointIds);
-  if (window)
+  if (window && result.FirstIndex != pairs.first)
   {
-    KeepPairs(result.Pairs, pairs.first, pairs.second);
-    result.FirstIndex = pairs.first;
+    throw SolverFailure("the components count " + std::to_string(result.FirstIndex) +
+      " eigenvalues below the frequency window, the whole mesh " + std::to_string(pairs.first));
   }
   LeaveOutUnrepresented(result, monitor);
   if (options.EigenvaluesOnly)

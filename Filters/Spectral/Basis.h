@@ -51,15 +51,17 @@ struct BasisOptions
   /// Bytes of one value of the caller's output basis (8 double, 4 float): the memory estimate.
   int BytesPerValue = 8;
   /// Compute and verify the eigenpairs but return no harmonics (BasisResult::Pairs has no
-  /// eigenvectors): the spectrum alone, without the output basis in the memory estimate.
+  /// eigenvectors): the spectrum alone, without the output basis in the memory estimate, and
+  /// with a solver that keeps only the vectors of its last bands (EigenOptions::KeepEigenvectors).
   bool EigenvaluesOnly = false;
   /**
    * The frequency window [LowerFrequency, UpperFrequency): when UpperFrequency > 0, the
    * harmonics whose frequency omega = sqrt(lambda) lies in it are computed instead of the
    * NumberOfHarmonics smallest. Their number is proven by two inertia counts (Sylvester's law:
-   * the negative pivots of L - omega^2 M are the eigenvalues below omega^2), and the pairs are
-   * computed as the smallest ones up to the upper end, so the cost is that of all the harmonics
-   * below it. Frequencies are in the units of the mesh.
+   * the negative pivots of L - omega^2 M are the eigenvalues below omega^2), per connected
+   * component too, and each component's bands start at the lower end (EigenpairsInWindowBy-
+   * Component, EigenOptions::StartIndex): the harmonics below it are not computed. Frequencies
+   * are in the units of the mesh.
    */
   double LowerFrequency = 0.0;
   double UpperFrequency = 0.0;

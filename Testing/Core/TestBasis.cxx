@@ -616,6 +616,27 @@ void FrequencyWindow()
   Check(scaled.FirstIndex == 4 && scaled.Pairs.Eigenvalues.size() == 5,
     "the window is in the units of the mesh");
 
+  // Two spheres, of radius 1 and 2: the window [2, 3) holds l = 2 of the first (omega 2.45)
+  // and l = 4, 5 of the second (omega sqrt(l (l + 1)) / 2: 2.24, 2.74), 5 + 9 + 11 = 25
+  // harmonics, after the 4 + 16 below omega = 2. Each component starts its bands at the window.
+  TriangleMesh big = Icosphere(4);
+  big.Vertices *= 2.0;
+  const TriangleMesh two = Join(sphere, Translated(big, 5.0));
+  options.LowerFrequency = 2.0;
+  options.UpperFrequency = 3.0;
+  const BasisResult both = ComputeBasis(two, options);
+  Check(both.FirstIndex == 20 && both.Pairs.Eigenvalues.size() == 25,
+    "two spheres, window [2, 3): 25 harmonics after 20 (" + std::to_string(both.FirstIndex) + ", " +
+      std::to_string(both.Pairs.Eigenvalues.size()) + ")");
+  all.NumberOfHarmonics = 45;
+  const BasisResult bottom = ComputeBasis(two, all);
+  CheckBelow(EigenvalueDifference(both.Pairs.Eigenvalues, bottom.Pairs.Eigenvalues.tail(25)),
+    1e-9,
+    "two spheres: the window's eigenvalues are pairs 20 to 44 of the smallest");
+  const DiscreteLaplacian twoOps = AssembleLaplacian(PrepareMesh(two), options.Operators);
+  CheckBelow(
+    OrthonormalityError(both.Pairs.Eigenvectors, twoOps.Mass), 1e-10, "two spheres: M-orthonormal");
+
   options.LowerFrequency = 2.5;
   options.UpperFrequency = 2.6;
   CheckThrows<InvalidInput>(
@@ -647,6 +668,34 @@ void EigenvaluesOnly()
   options.EigenvaluesOnly = false;
   CheckThrows<InsufficientMemory>(
     [&]() { ComputeBasis(Icosphere(3), options); }, "the same limit refuses the basis");
+
+  // A solve in many bands (10,242 points, 400 pairs): without harmonics the solver keeps only
+  // the vectors its seams need, and gives the same verified eigenvalues.
+  BasisOptions bands;
+  bands.NumberOfHarmonics = 400;
+  const TriangleMesh fine = Icosphere(5);
+  const BasisResult kept = ComputeBasis(fine, bands);
+  bands.EigenvaluesOnly = true;
+  const BasisResult alone = ComputeBasis(fine, bands);
+  Check(alone.Pairs.Eigenvectors.size() == 0 && alone.Pairs.Bands > 2,
+    "400 eigenvalues alone, in " + std::to_string(alone.Pairs.Bands) + " bands");
+  CheckBelow(EigenvalueDifference(alone.Pairs.Eigenvalues, kept.Pairs.Eigenvalues),
+    1e-12,
+    "the same eigenvalues as with the harmonics");
+  std::printf("    worst relative residual %.3e, backward error %.3e (with harmonics %.3e, %.3e)\n",
+    alone.Pairs.MaxResidual,
+    alone.Pairs.MaxBackwardError,
+    kept.Pairs.MaxResidual,
+    kept.Pairs.MaxBackwardError);
+  Check(alone.Pairs.MaxBackwardError > 0.0 &&
+      std::abs(alone.Pairs.MaxBackwardError - kept.Pairs.MaxBackwardError) <=
+        1e-3 * kept.Pairs.MaxBackwardError &&
+      std::abs(alone.Pairs.MaxResidual - kept.Pairs.MaxResidual) <= 1e-3 * kept.Pairs.MaxResidual,
+    "verified as the harmonics are (the same worst figures)");
+  const MemoryEstimate spectrumOnly = EstimateBasisMemory(10242, 10242, 400, 0, 0, false);
+  const MemoryEstimate withVectors = EstimateBasisMemory(10242, 10242, 400, 0, 0, true);
+  Check(spectrumOnly.Eigenvectors < withVectors.Eigenvectors,
+    "the estimate of a spectrum alone leaves out most of the solver's eigenvectors");
 }
 
 const Case Cases[] = {

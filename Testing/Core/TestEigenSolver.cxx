@@ -359,6 +359,90 @@ void BandSeams()
 }
 
 //------------------------------------------------------------------------------
+void SpectrumAlone()
+{
+  // The unit sphere's first 144 pairs (l <= 11) in bands of 20: the solve without eigenvectors
+  // lets the older bands' vectors go as it goes (after verifying them), and must give the same
+  // eigenvalues as the solve that keeps them, with its figures set.
+  const int m = 144;
+  for (const bool consistent : { false, true })
+  {
+    const TriangleMesh mesh = Icosphere(4);
+    const Problem p = consistent ? Consistent(mesh) : Lumped(mesh);
+    const std::string name = consistent ? "consistent mass" : "lumped mass";
+    EigenOptions options;
+    options.BandSize = 20;
+    const EigenResult kept = Solve(p, m, options);
+    options.KeepEigenvectors = false;
+    const EigenResult alone = Solve(p, m, options);
+    Check(alone.Eigenvectors.size() == 0 && alone.Eigenvalues.size() == m,
+      name + ": " + std::to_string(m) + " eigenvalues and no eigenvectors");
+    CheckSameValues(kept.Eigenvalues, alone.Eigenvalues, 1e-12, name + ": the same eigenvalues");
+    Check(alone.Bands == kept.Bands && alone.Bands > 5,
+      name + ": the same " + std::to_string(kept.Bands) + " bands");
+    Check(alone.MaxResidual > 0.0 && alone.MaxResidual <= options.ResidualTolerance &&
+        alone.MaxBackwardError > 0.0,
+      name + ": every pair verified before its vector was let go (relative residual " +
+        Str(alone.MaxResidual) + ", backward error " + Str(alone.MaxBackwardError) + ")");
+    CheckBelow(std::abs(alone.MaxResidual - kept.MaxResidual),
+      1e-3 * kept.MaxResidual,
+      name + ": the same worst relative residual as the final check of the kept pairs");
+  }
+}
+
+//------------------------------------------------------------------------------
+void StartAbove()
+{
+  // Pairs from index 25 (l >= 5) and from index 100 (l >= 10) of the unit sphere: the first
+  // StartIndex eigenvalues lie below StartValue (an inertia count says so), and the pairs are
+  // the same as those of the solve from the bottom, with fewer operator applications.
+  const int m = 144;
+  const TriangleMesh mesh = Icosphere(4);
+  const Problem p = Lumped(mesh);
+  EigenOptions options;
+  options.BandSize = 20;
+  const EigenResult all = Solve(p, m, options);
+  for (const int l : { 5, 10 })
+  {
+    const double start = l * l; // between the multiplets l - 1 and l: l (l - 1) < l^2 < l (l + 1)
+    const int below = CountEigenvaluesBelow(p.L, p.M, start);
+    const std::string name = "from l = " + std::to_string(l);
+    Check(below == l * l, name + ": " + std::to_string(below) + " eigenvalues below " + Str(start));
+    EigenOptions from = options;
+    from.StartIndex = below;
+    from.StartValue = start;
+    const EigenResult part = Solve(p, m - below, from);
+    CheckPairs(p, part, name);
+    CheckSameValues(
+      all.Eigenvalues.tail(m - below), part.Eigenvalues, 1e-9, name + ": eigenvalues");
+    double worst = 0.0;
+    for (int k = l; k <= 11; ++k)
+    {
+      worst = std::max(worst,
+        SinLargestAngle(all.Eigenvectors.middleCols(k * k, 2 * k + 1),
+          part.Eigenvectors.middleCols(k * k - below, 2 * k + 1),
+          p.M));
+    }
+    CheckBelow(worst, 1e-7, name + ": the multiplets' subspaces (max sin of principal angles)");
+    Check(part.OperatorApplications < all.OperatorApplications,
+      name + ": " + std::to_string(part.OperatorApplications) + " operator applications, " +
+        std::to_string(all.OperatorApplications) + " from the bottom");
+    from.KeepEigenvectors = false;
+    const EigenResult alone = Solve(p, m - below, from);
+    CheckSameValues(part.Eigenvalues, alone.Eigenvalues, 1e-12, name + ", no eigenvectors");
+  }
+  // StartIndex + m beyond n, and a start without its value, are refused.
+  EigenOptions bad = options;
+  bad.StartIndex = static_cast<int>(p.L.rows());
+  bad.StartValue = 1e6;
+  CheckThrows<InvalidInput>([&]() { Solve(p, 1, bad); }, "StartIndex + m > n is refused");
+  bad.StartIndex = 4;
+  bad.StartValue = 0.0;
+  CheckThrows<InvalidInput>(
+    [&]() { Solve(p, 1, bad); }, "StartIndex without StartValue is refused");
+}
+
+//------------------------------------------------------------------------------
 void MethodsAgree()
 {
   // Block Lanczos and Spectra's Lanczos give the same pairs, with narrow and default bands.
@@ -470,6 +554,8 @@ const Case Cases[] = {
   { "BandSeams", BandSeams },
   { "RefinedBands", RefinedBands },
   { "MethodsAgree", MethodsAgree },
+  { "SpectrumAlone", SpectrumAlone },
+  { "StartAbove", StartAbove },
   { "InertiaCounts", InertiaCounts },
   { "Cancellation", Cancellation },
   { "InvalidSizes", InvalidSizes },

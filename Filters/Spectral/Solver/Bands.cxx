@@ -53,13 +53,19 @@ int PairsPerBand(int m, int bandSize, Eigen::Index n)
 
 namespace
 {
-/// Eigenpairs accepted so far, ascending: columns [0, Count) of Vectors.
+/// Eigenpairs accepted so far, ascending. The vectors of the first Retired values have been let
+/// go (verified, KeepEigenvectors false); column j of Vectors is the vector of value Retired + j.
 struct Accepted
 {
   DenseMatrix Vectors;
   std::vector<double> Values;
+  int Retired = 0;
+  /// Between the last retired value and the first kept one; -infinity while none is retired.
+  double RetiredBelow = -std::numeric_limits<double>::infinity();
 
   int Count() const { return static_cast<int>(this->Values.size()); }
+  /// Number of values whose vectors are kept.
+  int Kept() const { return this->Count() - this->Retired; }
   int CountBelow(double x) const
   {
     return static_cast<int>(
@@ -81,7 +87,7 @@ void Merge(Accepted& accepted,
   const MassMatrix& M,
   Workspace& work)
 {
-  const int first = accepted.CountBelow(windowLow);
+  const int first = std::max(accepted.CountBelow(windowLow), accepted.Retired);
   const int fromAccepted = accepted.Count() - first;
   const Eigen::Index p = fromAccepted + values.size();
   if (p == 0)
@@ -89,12 +95,12 @@ void Merge(Accepted& accepted,
     return;
   }
   // The joint span in place: the band's vectors right after the accepted ones.
-  if (accepted.Vectors.cols() < accepted.Count() + values.size())
+  if (accepted.Vectors.cols() < accepted.Kept() + values.size())
   {
-    accepted.Vectors.conservativeResize(Eigen::NoChange, accepted.Count() + 2 * values.size());
+    accepted.Vectors.conservativeResize(Eigen::NoChange, accepted.Kept() + 2 * values.size());
   }
-  accepted.Vectors.middleCols(accepted.Count(), values.size()) = vectors;
-  auto Y = accepted.Vectors.middleCols(first, p);
+  accepted.Vectors.middleCols(accepted.Kept(), values.size()) = vectors;
+  auto Y = accepted.Vectors.middleCols(first - accepted.Retired, p);
 
   DenseMatrix G = M.Identity ? TransposeProduct(Y, Y) : TransposeProduct(Y, M.Matrix * Y);
   auto LY = Workspace::Columns(work.Image, Y.rows(), p);
@@ -146,7 +152,8 @@ public:
     const MassMatrix& M,
     double area,
     const EigenOptions& options,
-    const Monitor& monitor);
+    const Monitor& monitor,
+    const RetirePairs& retire);
 
   /// Run bands until the m smallest eigenpairs are proven; \return them.
   EigenResult Run();
@@ -158,6 +165,8 @@ private:
   void AcceptBand(const Band& band);
   bool InertiaAgrees(const Vector& trusted, double low);
   void UpdateReference(const Vector& trusted);
+  void Retire(int end);
+  void RetireOldVectors();
   void RollBack(const std::string& what);
   void Report(double fraction);
   void CountFailure(const std::string& what);
@@ -169,6 +178,9 @@ private:
   const Eigen::Index N;
   const int Count; ///< m
   const int Nev;
+  /// The eigenvalues below StartValue, counted as found (EigenOptions::StartIndex).
+  const int Offset;
+  const RetirePairs& RetireCheck;
 
   EigenResult Result;
   Clock::time_point Start;
@@ -197,7 +209,8 @@ BandLoop::BandLoop(const SparseMatrix& L,
   const MassMatrix& M,
   double area,
   const EigenOptions& options,
-  const Monitor& monitor)
+  const Monitor& monitor,
+  const RetirePairs& retire)
   : L(L)
   , M(M)
   , Options(options)
@@ -205,6 +218,8 @@ BandLoop::BandLoop(const SparseMatrix& L,
   , N(L.rows())
   , Count(options.NumberOfEigenpairs)
   , Nev(PairsPerBand(options.NumberOfEigenpairs, options.BandSize, L.rows()))
+  , Offset(options.StartIndex)
+  , RetireCheck(retire)
   , Start(Clock::now())
   , Factor(L, M.Matrix, options.Factorization)
   , Scale(L.diagonal().sum() / M.Matrix.diagonal().sum())
@@ -216,7 +231,17 @@ BandLoop::BandLoop(const SparseMatrix& L,
   , Sigma(this->FirstShift)
 {
   this->Result.Seconds.Factorization += SecondsSince(this->Start);
-  this->AcceptedPairs.Vectors.resize(this->N, this->Count + 2 * this->Nev);
+  const int columns = this->Count + 2 * this->Nev;
+  this->AcceptedPairs.Vectors.resize(
+    this->N, this->Options.KeepEigenvectors ? columns : std::min(columns, 3 * this->Nev));
+  if (this->Offset > 0)
+  {
+    // What lies below StartValue is proven by the caller; the bands start above it, from the
+    // density of the eigenvalues below (Weyl's law).
+    this->Proven = this->Complete = options.StartValue;
+    this->MeanGap = options.StartValue / this->Offset;
+    this->Sigma = options.StartValue + 0.375 * this->Nev * this->MeanGap;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -245,10 +270,62 @@ EigenResult BandLoop::Run()
   }
   this->Result.Eigenvalues =
     Eigen::Map<const Vector>(this->AcceptedPairs.Values.data(), this->Count);
+  if (!this->Options.KeepEigenvectors)
+  {
+    this->Retire(this->Count);
+    this->Result.Eigenvectors.resize(0, 0);
+    return std::move(this->Result);
+  }
   // Hand the accepted block over without a second n x m copy (gigabytes for large meshes).
   this->AcceptedPairs.Vectors.conservativeResize(Eigen::NoChange, this->Count);
   this->Result.Eigenvectors = std::move(this->AcceptedPairs.Vectors);
   return std::move(this->Result);
+}
+
+//------------------------------------------------------------------------------
+// Verify the accepted pairs below index `end` whose vectors are still kept, and let their
+// vectors go.
+void BandLoop::Retire(int end)
+{
+  Accepted& accepted = this->AcceptedPairs;
+  const int count = std::min(end, accepted.Count()) - accepted.Retired;
+  if (count <= 0)
+  {
+    return;
+  }
+  const Vector values = Eigen::Map<const Vector>(accepted.Values.data() + accepted.Retired, count);
+  this->RetireCheck(values, accepted.Vectors.leftCols(count), accepted.Retired, this->Result);
+  const int kept = accepted.Kept() - count;
+  for (int j = 0; j < kept; ++j)
+  {
+    accepted.Vectors.col(j) = accepted.Vectors.col(count + j);
+  }
+  accepted.Retired += count;
+  accepted.RetiredBelow = accepted.Retired < accepted.Count()
+    ? 0.5 * (accepted.Values[accepted.Retired - 1] + accepted.Values[accepted.Retired])
+    : accepted.Values[accepted.Retired - 1];
+}
+
+//------------------------------------------------------------------------------
+// Without KeepEigenvectors: once more than two bands' worth of vectors are kept, retire those a
+// band below what is proven, at a gap of the spectrum (a multiple eigenvalue stays whole).
+void BandLoop::RetireOldVectors()
+{
+  const Accepted& accepted = this->AcceptedPairs;
+  if (this->Options.KeepEigenvectors || accepted.Kept() <= 2 * this->Nev)
+  {
+    return;
+  }
+  int end = std::min(accepted.CountBelow(this->Proven), this->Count) - this->Nev;
+  while (end > accepted.Retired &&
+    !(accepted.Values[end] - accepted.Values[end - 1] > 1e-6 * std::abs(accepted.Values[end])))
+  {
+    --end;
+  }
+  if (end > accepted.Retired)
+  {
+    this->Retire(end);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -276,6 +353,7 @@ Step BandLoop::ProveTop()
   {
     return Step::Finished;
   }
+  j += this->Offset;
   if (!this->Factor.Factor(tau))
   {
     this->CountFailure("the LDL^T factorization of L - sigma M failed at " + Str(tau));
@@ -377,9 +455,12 @@ void BandLoop::AcceptBand(const Band& band)
     this->CountFailure("the bands do not overlap near " + Str(this->Complete));
     return;
   }
-  // The trusted pairs, inside (low, high): a range of the ascending band.
+  // The trusted pairs, inside (low, high) and not below StartValue: a range of the ascending
+  // band.
+  const double floor = this->Offset > 0 ? this->Options.StartValue : low;
   Eigen::Index firstTrusted = 0;
-  while (firstTrusted < values.size() && !(values[firstTrusted] > low))
+  while (
+    firstTrusted < values.size() && !(values[firstTrusted] > low && values[firstTrusted] >= floor))
   {
     ++firstTrusted;
   }
@@ -394,9 +475,15 @@ void BandLoop::AcceptBand(const Band& band)
     return;
   }
   this->UpdateReference(trusted);
+  // Pairs below the retired vectors are already accepted (values only): not merged again.
+  Eigen::Index skip = 0;
+  while (skip < trusted.size() && trusted[skip] < this->AcceptedPairs.RetiredBelow)
+  {
+    ++skip;
+  }
   Merge(this->AcceptedPairs,
-    trusted,
-    this->Work.Basis.middleCols(firstTrusted, trusted.size()),
+    trusted.tail(trusted.size() - skip),
+    this->Work.Basis.middleCols(firstTrusted + skip, trusted.size() - skip),
     low - 0.25 * this->Radius,
     this->L,
     this->M,
@@ -410,6 +497,7 @@ void BandLoop::AcceptBand(const Band& band)
   const double density = static_cast<double>(values.size()) / std::max(spread, slack);
   this->MeanGap = 1.0 / density;
   this->Sigma = this->Complete + 0.75 * static_cast<double>(values.size()) / (2.0 * density);
+  this->RetireOldVectors();
 }
 
 //------------------------------------------------------------------------------
@@ -419,7 +507,7 @@ void BandLoop::AcceptBand(const Band& band)
 // eigenvalues below the shift: roll back.
 bool BandLoop::InertiaAgrees(const Vector& trusted, double low)
 {
-  int belowShift = this->AcceptedPairs.CountBelow(low);
+  int belowShift = this->Offset + this->AcceptedPairs.CountBelow(low);
   for (Eigen::Index i = 0; i < trusted.size(); ++i)
   {
     belowShift += (trusted[i] < this->Sigma) ? 1 : 0;
@@ -499,9 +587,10 @@ EigenResult BandEigenpairs(const SparseMatrix& L,
   const MassMatrix& M,
   double area,
   const EigenOptions& options,
-  const Monitor& monitor)
+  const Monitor& monitor,
+  const RetirePairs& retire)
 {
-  return BandLoop(L, M, area, options, monitor).Run();
+  return BandLoop(L, M, area, options, monitor, retire).Run();
 }
 } // namespace detail
 } // namespace spectral

@@ -23,6 +23,17 @@
  * (Factorization.h) must equal the number of accepted eigenvalues below sigma; otherwise what
  * is not proven is dropped and the band is retried (at most three times).
  *
+ * Pairs that start higher (EigenOptions::StartIndex > 0): the eigenvalues below StartValue
+ * count as found (their number is the caller's inertia proof), the first shift lies above
+ * StartValue by 3/8 of a band's width (the density from Weyl's law, StartIndex / StartValue),
+ * and a band's pairs below StartValue are not trusted.
+ *
+ * Without the eigenvectors (EigenOptions::KeepEigenvectors false): once more than two bands'
+ * worth of accepted vectors are kept, those one band below what is proven are verified and
+ * dropped (retired), at a gap of the spectrum, never inside a multiple eigenvalue. A later band
+ * that reaches below the retired ones counts its pairs there in the inertia proof but does not
+ * merge them: their values are already accepted.
+ *
  * Used by SmallestEigenpairs (EigenSolver.h) and by EstimateBasisMemory (Memory.h);
  * tested by Testing/Core/TestEigenSolver.cxx (BandSeams, RefinedBands, DisjointComponents) and
  * Testing/Core/TestMemory.cxx (EstimateFormula: the automatic band sizes).
@@ -33,6 +44,8 @@
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
 #include "Solver/EigenSolver.h"
+
+#include <functional>
 
 namespace spectral
 {
@@ -58,18 +71,30 @@ struct MassMatrix;
 int PairsPerBand(int m, int bandSize, Eigen::Index n);
 
 /**
+ * What a solve that does not keep its eigenvectors does with the pairs it lets go: verify them
+ * (CheckSomeResiduals) on the caller's pencil. Called with the pairs' values, their vectors in
+ * the loop's pencil, the index of the first, and the result whose figures it raises.
+ */
+using RetirePairs =
+  std::function<void(const Vector& values, const DenseMatrix& vectors, int first, EigenResult&)>;
+
+/**
  * The band-by-band shift-invert Lanczos iteration (see EigenSolver.h and the band policy above)
  * on the pencil (L, M).
  * \param area the surface area: the sum of the entries of the mass matrix before any scaling.
- * \return the options.NumberOfEigenpairs smallest pairs, ascending, M-orthonormal (signs not
- *         normalized, MaxResidual not set).
+ * \param retire Without options.KeepEigenvectors: receives every returned pair (and possibly
+ *        some beyond them) before its vector is dropped.
+ * \return the options.NumberOfEigenpairs smallest pairs at or above options.StartValue,
+ *         ascending, M-orthonormal (signs not normalized, MaxResidual not set), or their
+ *         eigenvalues alone without options.KeepEigenvectors (MaxResidual set by `retire`).
  * \throws SolverFailure, Cancelled as SmallestEigenpairs.
  */
 EigenResult BandEigenpairs(const SparseMatrix& L,
   const MassMatrix& M,
   double area,
   const EigenOptions& options,
-  const Monitor& monitor);
+  const Monitor& monitor,
+  const RetirePairs& retire = RetirePairs());
 } // namespace detail
 } // namespace spectral
 

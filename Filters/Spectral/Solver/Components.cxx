@@ -27,7 +27,6 @@ struct Block
 // The operators of each component, with its rows in the whole ones.
 std::vector<Block> SplitBlocks(const SparseMatrix& L,
   const SparseMatrix& M,
-  const Vector& weight,
   const std::vector<int>& label,
   int count)
 {
@@ -38,7 +37,6 @@ std::vector<Block> SplitBlocks(const SparseMatrix& L,
     Block& block = blocks[static_cast<std::size_t>(label[i])];
     local[i] = static_cast<int>(block.Rows.size());
     block.Rows.push_back(static_cast<int>(i));
-    block.Area += weight[static_cast<Eigen::Index>(i)];
   }
   // Entries of each whole matrix, sorted into the blocks of their columns (the operators have
   // no entry between components).
@@ -95,6 +93,32 @@ void AddStatistics(EigenResult& total, const EigenResult& part)
   total.Seconds.Verification += part.Seconds.Verification;
 }
 
+//------------------------------------------------------------------------------
+// The union of the chosen pairs (component, index within its pairs), in the given order: the
+// eigenvalues, and the eigenvectors extended by zero if the components have them.
+void Gather(const std::vector<Block>& blocks,
+  const std::vector<std::pair<int, int>>& chosen,
+  Eigen::Index n,
+  EigenResult& result)
+{
+  const bool vectors = std::any_of(blocks.begin(),
+    blocks.end(),
+    [](const Block& block) { return block.Pairs.Eigenvectors.cols() > 0; });
+  result.Eigenvalues.resize(static_cast<Eigen::Index>(chosen.size()));
+  result.Eigenvectors = vectors ? DenseMatrix::Zero(n, result.Eigenvalues.size()) : DenseMatrix();
+  for (std::size_t j = 0; j < chosen.size(); ++j)
+  {
+    const Block& block = blocks[static_cast<std::size_t>(chosen[j].first)];
+    const int k = chosen[j].second;
+    result.Eigenvalues[static_cast<Eigen::Index>(j)] = block.Pairs.Eigenvalues[k];
+    for (std::size_t r = 0; vectors && r < block.Rows.size(); ++r)
+    {
+      result.Eigenvectors(block.Rows[r], static_cast<Eigen::Index>(j)) =
+        block.Pairs.Eigenvectors(static_cast<Eigen::Index>(r), k);
+    }
+  }
+}
+
 /**
  * A pair of the union, in the order of its sort key: the eigenvalue (exactly 0 for the first
  * pair of each component, its constant harmonic, whatever round-off the solver left), minus the
@@ -147,9 +171,13 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
 {
   if (count <= 1)
   {
-    return solve(L, M, m, monitor);
+    return solve(L, M, PairRequest{ m }, monitor);
   }
-  std::vector<Block> blocks = SplitBlocks(L, M, weight, label, count);
+  std::vector<Block> blocks = SplitBlocks(L, M, label, count);
+  for (std::size_t i = 0; i < label.size(); ++i)
+  {
+    blocks[static_cast<std::size_t>(label[i])].Area += weight[static_cast<Eigen::Index>(i)];
+  }
   const double totalArea = weight.sum();
   const double n = static_cast<double>(L.rows());
   EigenResult result;
@@ -158,7 +186,8 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   {
     const double share = static_cast<double>(block.Rows.size()) / n;
     block.Asked = FirstRequest(block, totalArea, m);
-    block.Pairs = solve(block.L, block.M, block.Asked, monitor.Scaled(done, done + share));
+    block.Pairs =
+      solve(block.L, block.M, PairRequest{ block.Asked }, monitor.Scaled(done, done + share));
     AddStatistics(result, block.Pairs);
     done += share;
   }
@@ -178,7 +207,7 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
       if (MayHideEigenvalues(block, threshold))
       {
         block.Asked = std::min(static_cast<int>(block.Rows.size()), std::max(2 * block.Asked, 1));
-        block.Pairs = solve(block.L, block.M, block.Asked, quiet);
+        block.Pairs = solve(block.L, block.M, PairRequest{ block.Asked }, quiet);
         AddStatistics(result, block.Pairs);
         again = true;
       }
@@ -196,20 +225,69 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   std::stable_sort(smallest.begin(),
     smallest.end(),
     [&value](const Member& a, const Member& b) { return value(a) < value(b); });
-  result.Eigenvalues.resize(static_cast<Eigen::Index>(smallest.size()));
-  result.Eigenvectors = DenseMatrix::Zero(L.rows(), result.Eigenvalues.size());
-  for (std::size_t j = 0; j < smallest.size(); ++j)
+  std::vector<std::pair<int, int>> chosen;
+  for (const Member& member : smallest)
   {
-    const int c = std::get<2>(smallest[j]);
-    const int k = std::get<3>(smallest[j]);
-    const Block& block = blocks[static_cast<std::size_t>(c)];
-    result.Eigenvalues[static_cast<Eigen::Index>(j)] = block.Pairs.Eigenvalues[k];
-    for (std::size_t r = 0; r < block.Rows.size(); ++r)
-    {
-      result.Eigenvectors(block.Rows[r], static_cast<Eigen::Index>(j)) =
-        block.Pairs.Eigenvectors(static_cast<Eigen::Index>(r), k);
-    }
+    chosen.emplace_back(std::get<2>(member), std::get<3>(member));
   }
+  Gather(blocks, chosen, L.rows(), result);
+  monitor.Report(1.0);
+  return result;
+}
+
+//------------------------------------------------------------------------------
+EigenResult EigenpairsInWindowByComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const std::vector<int>& label,
+  int count,
+  double low,
+  double high,
+  const PairSolver& solve,
+  int& below,
+  const Monitor& monitor)
+{
+  below = 0;
+  // The pairs of one component in the window; none if it has no eigenvalue there.
+  const auto inWindow = [&](const SparseMatrix& Lc, const SparseMatrix& Mc, const Monitor& part)
+  {
+    monitor.ThrowIfCancelled();
+    // Below omega = 0 there is no eigenvalue (L is positive semi-definite).
+    const int first = low > 0.0 ? CountEigenvaluesBelow(Lc, Mc, low) : 0;
+    const int end = CountEigenvaluesBelow(Lc, Mc, high);
+    below += first;
+    return end > first ? solve(Lc, Mc, PairRequest{ end - first, first, low }, part)
+                       : EigenResult();
+  };
+  if (count <= 1)
+  {
+    EigenResult result = inWindow(L, M, monitor);
+    monitor.Report(1.0);
+    return result;
+  }
+  std::vector<Block> blocks = SplitBlocks(L, M, label, count);
+  EigenResult result;
+  const double n = static_cast<double>(L.rows());
+  double done = 0.0;
+  std::vector<std::tuple<double, int, int>> members;
+  for (std::size_t c = 0; c < blocks.size(); ++c)
+  {
+    Block& block = blocks[c];
+    const double share = static_cast<double>(block.Rows.size()) / n;
+    block.Pairs = inWindow(block.L, block.M, monitor.Scaled(done, done + share));
+    AddStatistics(result, block.Pairs);
+    for (Eigen::Index k = 0; k < block.Pairs.Eigenvalues.size(); ++k)
+    {
+      members.emplace_back(block.Pairs.Eigenvalues[k], static_cast<int>(c), static_cast<int>(k));
+    }
+    done += share;
+  }
+  std::sort(members.begin(), members.end());
+  std::vector<std::pair<int, int>> chosen;
+  for (const auto& member : members)
+  {
+    chosen.emplace_back(std::get<1>(member), std::get<2>(member));
+  }
+  Gather(blocks, chosen, L.rows(), result);
   monitor.Report(1.0);
   return result;
 }

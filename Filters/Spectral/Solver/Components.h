@@ -34,9 +34,20 @@
 
 namespace spectral
 {
-/// Solves L h = lambda M h for the k smallest pairs (with whatever fallbacks the caller wants).
-using PairSolver = std::function<
-  EigenResult(const SparseMatrix& L, const SparseMatrix& M, int k, const Monitor& monitor)>;
+/// What a PairSolver is asked for: Count pairs from index StartIndex of the spectrum, the
+/// first StartIndex eigenvalues lying below StartValue (as in EigenOptions).
+struct PairRequest
+{
+  int Count = 0;
+  int StartIndex = 0;
+  double StartValue = 0.0;
+};
+
+/// Solves L h = lambda M h for the requested pairs (with whatever fallbacks the caller wants).
+using PairSolver = std::function<EigenResult(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const PairRequest& request,
+  const Monitor& monitor)>;
 
 /**
  * The m smallest eigenpairs of block-diagonal operators, component by component.
@@ -48,9 +59,9 @@ using PairSolver = std::function<
  * \param solve The solver of one component.
  * \param monitor Progress in [0, 1] over all components, and cancellation.
  * \return Eigenvalues ascending, eigenvectors n by m, each zero outside its component; the
- *         statistics summed (MaxResidual and MaxBackwardError: the largest). The zero eigenvalues (the first of each
- *         component) come first, the largest components' first, so that when m is below the
- *         number of components the basis describes the largest ones.
+ *         statistics summed (MaxResidual and MaxBackwardError: the largest). The zero eigenvalues
+ * (the first of each component) come first, the largest components' first, so that when m is below
+ * the number of components the basis describes the largest ones.
  */
 EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -59,6 +70,27 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   int count,
   int m,
   const PairSolver& solve,
+  const Monitor& monitor = Monitor());
+
+/**
+ * The eigenpairs with eigenvalues in [low, high) of block-diagonal operators, component by
+ * component: the inertia of each component's L - low M and L - high M (Sylvester's law) counts
+ * its eigenvalues below both ends, so each component is asked for exactly its pairs in the
+ * window, starting there (PairRequest::StartIndex), and the union is proven.
+ * \param low, high The window, 0 <= low < high; no eigenvalue may equal either end.
+ * \param below Set to the number of eigenvalues below low, over all components.
+ * \return The pairs ascending, eigenvectors (if the solver returns them) zero outside their
+ *         component; statistics as SmallestEigenpairsByComponent.
+ * \throws SolverFailure if an inertia count fails (an end is an eigenvalue).
+ */
+EigenResult EigenpairsInWindowByComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const std::vector<int>& label,
+  int count,
+  double low,
+  double high,
+  const PairSolver& solve,
+  int& below,
   const Monitor& monitor = Monitor());
 } // namespace spectral
 

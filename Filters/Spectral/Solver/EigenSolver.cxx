@@ -87,8 +87,9 @@ void NormalizeSigns(DenseMatrix& Phi)
     }
   }
 }
-/// All eigenpairs of the dense pencil, then the m smallest.
-EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int m)
+
+/// All eigenpairs of the dense pencil, then the m smallest from index `first`.
+EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int first, int m)
 {
   const DenseMatrix Ld(L);
   const DenseMatrix Md(M);
@@ -99,8 +100,8 @@ EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int m)
                         "definite?)");
   }
   EigenResult result;
-  result.Eigenvalues = solver.eigenvalues().head(m);
-  result.Eigenvectors = solver.eigenvectors().leftCols(m);
+  result.Eigenvalues = solver.eigenvalues().segment(first, m);
+  result.Eigenvectors = solver.eigenvectors().middleCols(first, m);
   return result;
 }
 
@@ -114,12 +115,12 @@ EigenResult SolveDensely(const SparseMatrix& L,
   const int m = options.NumberOfEigenpairs;
   if (n > 20000)
   {
-    throw InvalidInput("asking for " + std::to_string(m) + " eigenpairs of " + std::to_string(n) +
-      " unknowns needs a dense solve; ask for at most n/3");
+    throw InvalidInput("asking for " + std::to_string(options.StartIndex + m) + " eigenpairs of " +
+      std::to_string(n) + " unknowns needs a dense solve; ask for at most n/3");
   }
   monitor.ThrowIfCancelled();
   const Clock::time_point start = Clock::now();
-  EigenResult result = DenseEigenpairs(L, M, m);
+  EigenResult result = DenseEigenpairs(L, M, options.StartIndex, m);
   result.Seconds.RayleighRitz = SecondsSince(start);
   return result;
 }
@@ -134,7 +135,11 @@ EigenResult SolveByBands(const SparseMatrix& L,
   const double area = M.sum();
   if (!IsPositiveDiagonal(M))
   {
-    return detail::BandEigenpairs(L, detail::MassMatrix{ M, false }, area, options, monitor);
+    const detail::RetirePairs retire =
+      [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
+    { detail::CheckSomeResiduals(L, M, options, values, vectors, first, result); };
+    return detail::BandEigenpairs(
+      L, detail::MassMatrix{ M, false }, area, options, monitor, retire);
   }
   // Q h = lambda D h with a diagonal D is the standard problem S y = lambda y with
   // S = D^-1/2 Q D^-1/2 and y = D^1/2 h: the same eigenvalues, the same inertia of every
@@ -144,8 +149,17 @@ EigenResult SolveByBands(const SparseMatrix& L,
   const SparseMatrix S = scaling.asDiagonal() * L * scaling.asDiagonal();
   SparseMatrix identity(n, n);
   identity.setIdentity();
+  // Pairs let go without options.KeepEigenvectors are verified as harmonics h = D^-1/2 y, on
+  // the caller's pencil, as the final check verifies the pairs that are kept.
+  const detail::RetirePairs retire =
+    [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
+  {
+    DenseMatrix harmonics = vectors;
+    ScaleRows(harmonics, scaling);
+    detail::CheckSomeResiduals(L, M, options, values, harmonics, first, result);
+  };
   EigenResult result =
-    detail::BandEigenpairs(S, detail::MassMatrix{ identity, true }, area, options, monitor);
+    detail::BandEigenpairs(S, detail::MassMatrix{ identity, true }, area, options, monitor, retire);
   ScaleRows(result.Eigenvectors, scaling);
   return result;
 }
@@ -165,17 +179,31 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
   {
     throw InvalidInput("the stiffness and mass matrices must be square and of the same size");
   }
-  if (m < 1 || m > n)
+  if (options.StartIndex < 0 || (options.StartIndex > 0 && !(options.StartValue > 0.0)))
   {
-    throw InvalidInput("cannot compute " + std::to_string(m) + " eigenpairs of a problem with " +
-      std::to_string(n) + " unknowns: ask for 1 to " + std::to_string(n));
+    throw InvalidInput("the pairs must start at a positive StartValue with StartIndex >= 0");
+  }
+  const Eigen::Index wanted = static_cast<Eigen::Index>(options.StartIndex) + m;
+  if (m < 1 || wanted > n)
+  {
+    throw InvalidInput("cannot compute " + std::to_string(m) + " eigenpairs from index " +
+      std::to_string(options.StartIndex) + " of a problem with " + std::to_string(n) +
+      " unknowns: ask for 1 to " + std::to_string(n - options.StartIndex));
   }
   monitor.Report(0.0);
-  EigenResult result = n <= options.DenseThreshold || 3 * static_cast<Eigen::Index>(m) > n
-    ? SolveDensely(L, M, options, monitor)
-    : SolveByBands(L, M, options, monitor);
-  NormalizeSigns(result.Eigenvectors);
-  detail::CheckResiduals(L, M, options, result);
+  const bool dense = n <= options.DenseThreshold || 3 * wanted > n;
+  EigenResult result =
+    dense ? SolveDensely(L, M, options, monitor) : SolveByBands(L, M, options, monitor);
+  if (dense || options.KeepEigenvectors)
+  {
+    NormalizeSigns(result.Eigenvectors);
+    detail::CheckResiduals(L, M, options, result);
+  }
+  if (!options.KeepEigenvectors)
+  {
+    // The band path verified its pairs as it let them go.
+    result.Eigenvectors.resize(0, 0);
+  }
   monitor.Report(1.0);
   return result;
 }

@@ -77,6 +77,22 @@ struct EigenOptions
   /// Threads of the factorizations, solves and block products: 0 every core (the rule of
   /// Common/Threads.h); the results do not depend on it beyond round-off.
   int Threads = 0;
+  /**
+   * Whether to return the eigenvectors. Without them (a spectrum alone), the band-by-band
+   * solve keeps only the vectors its seams still need: it verifies the older pairs (residuals
+   * and backward errors, as the final check does) before it lets their vectors go, so its
+   * memory no longer grows with m, and EigenResult::Eigenvectors is empty.
+   */
+  bool KeepEigenvectors = true;
+  /**
+   * Pairs that start above the bottom of the spectrum: when StartIndex > 0, the solve returns
+   * the NumberOfEigenpairs smallest eigenvalues at or above StartValue, and StartIndex must be
+   * the number of eigenvalues below StartValue (the caller's inertia count of L - StartValue M,
+   * CountEigenvaluesBelow). The bands start at StartValue, and every inertia proof counts these
+   * StartIndex eigenvalues as found.
+   */
+  int StartIndex = 0;
+  double StartValue = 0.0;
 };
 
 /// Seconds spent in each stage of SmallestEigenpairs.
@@ -122,10 +138,11 @@ struct EigenResult
  * \param L n by n, sparse, symmetric positive semi-definite (e.g. CotanStiffness).
  * \param M n by n, sparse, symmetric positive definite (e.g. Diagonal(LumpedMass) or
  *          ConsistentMass), with a pattern contained in that of L plus the diagonal.
- * \param options m, band size, tolerances.
+ * \param options m, band size, tolerances, where the pairs start, whether to keep the vectors.
  * \param monitor progress in [0, 1] and cancellation, polled inside every operator application.
- * \return Eigenvalues ascending, eigenvectors M-orthonormal with a deterministic sign.
- * \throws InvalidInput if the sizes disagree or m is not in [1, n].
+ * \return Eigenvalues ascending, eigenvectors M-orthonormal with a deterministic sign (none
+ *         without options.KeepEigenvectors).
+ * \throws InvalidInput if the sizes disagree or StartIndex + m is not in [1, n].
  * \throws SolverFailure if a band does not converge, a factorization fails, an inertia count
  *         disagrees with the eigenvalues found, or a pair has both a relative residual above
  *         ResidualTolerance and a backward error above BackwardErrorTolerance.

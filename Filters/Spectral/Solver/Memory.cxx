@@ -37,13 +37,15 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   std::uint64_t nUsed,
   int m,
   int bandSize,
-  int bytesPerValue)
+  int bytesPerValue,
+  bool keepEigenvectors)
 {
   const std::uint64_t harmonics = static_cast<std::uint64_t>(std::max(m, 0));
   const std::uint64_t band = static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize));
   MemoryEstimate estimate;
   estimate.Basis = n * harmonics * static_cast<std::uint64_t>(bytesPerValue);
-  estimate.Eigenvectors = nUsed * harmonics * 8;
+  estimate.Eigenvectors =
+    nUsed * (keepEigenvectors ? harmonics : std::min(harmonics, 3 * band)) * 8;
   estimate.Krylov = nUsed * (3 * band + 100) * 8;
   estimate.Factor = nUsed * 80 * 12;
   return estimate;

@@ -11,7 +11,9 @@
  * The estimate (bytes) for n points (nUsed of them used by triangles) and m harmonics is
  *
  *     n m b                     the output basis, b = 8 (double) or 4 (float) bytes a value
- *   + nUsed m 8                 the solver's eigenvector block (always double)
+ *   + nUsed m 8                 the solver's eigenvector block (always double); a spectrum
+ *                               alone (no eigenvectors kept, EigenOptions::KeepEigenvectors)
+ *                               needs nUsed min(m, 3 k) 8: the vectors its seams still need
  *   + nUsed (3 k + 100) 8       the Lanczos workspace of a band of k pairs: its Krylov basis,
  *                               block products and Ritz vectors
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
@@ -63,14 +65,17 @@ struct MemoryEstimate
  * \param nUsed Points that triangles use (unknowns of the eigenproblem), <= n.
  * \param m Number of harmonics.
  * \param bandSize Eigenpairs per band (EigenOptions::BandSize); 0 for the automatic choice.
- * \param bytesPerValue Size of one value of the output basis: 8 (double) or 4 (float).
+ * \param bytesPerValue Size of one value of the output basis: 8 (double) or 4 (float); 0 for
+ *        none.
+ * \param keepEigenvectors Whether the solver keeps its eigenvectors (false: a spectrum alone).
  * \return The terms of the estimate.
  */
 MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   std::uint64_t nUsed,
   int m,
   int bandSize,
-  int bytesPerValue);
+  int bytesPerValue,
+  bool keepEigenvectors = true);
 
 /**
  * The memory available to a new computation, in bytes: MemAvailable of /proc/meminfo on Linux

@@ -83,23 +83,40 @@ void CheckResiduals(const SparseMatrix& L,
   const EigenOptions& options,
   EigenResult& result)
 {
+  result.MaxResidual = 0.0;
+  result.MaxBackwardError = 0.0;
+  CheckSomeResiduals(L, M, options, result.Eigenvalues, result.Eigenvectors, 0, result);
+}
+
+//------------------------------------------------------------------------------
+void CheckSomeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const EigenOptions& options,
+  const Vector& lambda,
+  const DenseMatrix& Phi,
+  int first,
+  EigenResult& result)
+{
   const Clock::time_point start = Clock::now();
-  const PairFigures figures = ResidualFigures(L, M, result.Eigenvalues, result.Eigenvectors, true);
+  const PairFigures figures = ResidualFigures(L, M, lambda, Phi, true);
   const Vector& residuals = figures.Relative;
   const Vector& backward = figures.Backward;
-  result.MaxResidual = residuals.size() ? residuals.maxCoeff() : 0.0;
-  result.MaxBackwardError = backward.size() ? backward.maxCoeff() : 0.0;
+  if (residuals.size() > 0)
+  {
+    result.MaxResidual = std::max(result.MaxResidual, residuals.maxCoeff());
+    result.MaxBackwardError = std::max(result.MaxBackwardError, backward.maxCoeff());
+  }
   result.Seconds.Verification += SecondsSince(start);
   for (Eigen::Index k = 0; k < residuals.size(); ++k)
   {
     if (!(residuals[k] <= options.ResidualTolerance) &&
       !(backward[k] <= options.BackwardErrorTolerance))
     {
-      throw SolverFailure("eigenpair " + std::to_string(k) + " (lambda = " +
-          Str(result.Eigenvalues[k]) + ") has relative residual " + Str(residuals[k]) +
+      throw SolverFailure("eigenpair " + std::to_string(first + k) +
+          " (lambda = " + Str(lambda[k]) + ") has relative residual " + Str(residuals[k]) +
           " and backward error " + Str(backward[k]) + ", above the tolerances " +
           Str(options.ResidualTolerance) + " and " + Str(options.BackwardErrorTolerance),
-        static_cast<int>(result.Eigenvalues.size()));
+        first + static_cast<int>(k));
     }
   }
 }

@@ -96,6 +96,21 @@ void CheckResiduals(const SparseMatrix& L,
   const SparseMatrix& M,
   const EigenOptions& options,
   EigenResult& result);
+
+/**
+ * The same check on some of the pairs: raises result.MaxResidual and result.MaxBackwardError to
+ * the figures of the pairs (lambda, Phi), whose first is pair `first` of the result (for the
+ * message), and adds its time to result.Seconds.Verification. How a solve that does not keep
+ * its eigenvectors verifies its pairs before it lets them go, a block at a time.
+ * \throws SolverFailure as CheckResiduals.
+ */
+void CheckSomeResiduals(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const EigenOptions& options,
+  const Vector& lambda,
+  const DenseMatrix& Phi,
+  int first,
+  EigenResult& result);
 } // namespace detail
 } // namespace spectral
 
