@@ -291,10 +291,12 @@ int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output
   if (this->ComputeHeatKernelSignature || this->ComputeWaveKernelSignature ||
     this->ComputeGlobalPointSignature || this->ComputeSpectralDistance)
   {
-    vtkErrorMacro(<< "The basis holds eigenvalues only (ManifoldHarmonicBasis with "
-                     "EigenvaluesOnly): the point descriptors need its harmonics. Turn them off "
-                     "for ShapeDNA alone, or compute the harmonics.");
-    return 0;
+    // The spectrum is what a basis without harmonics is for: ShapeDNA is computed, and the
+    // point descriptors are left out with a warning rather than failing the whole filter.
+    vtkWarningMacro(<< "The basis holds eigenvalues only (ManifoldHarmonicBasis with "
+                       "EigenvaluesOnly): ShapeDNA is computed, the point descriptors (which "
+                       "need the harmonics) are not. Turn them off to silence this warning, or "
+                       "compute the harmonics.");
   }
   const spectral::Vector mass = vtkManifoldHarmonicsArrays::Signal(
     input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass))
