@@ -16,7 +16,8 @@
  *   (its owner counts it), while still giving it its harmonics and filtered values.
  * vtkManifoldHarmonicBasis sets DUPLICATEPOINT itself on the copies of a point that several
  * pieces hold, so that exactly one process counts it (vtkManifoldHarmonicsParallel.h).
- * Not installed and not wrapped. Test: Testing/ParaView/TestParallelGhostCells.py.in.
+ * Not installed and not wrapped. Tests: Filters/Testing/Cxx/TestGhostCells.cxx (serial),
+ * Testing/ParaView/TestParallelGhostCells.py.in (2 and 3 processes).
  */
 #ifndef vtkManifoldHarmonicsGhosts_h
 #define vtkManifoldHarmonicsGhosts_h
