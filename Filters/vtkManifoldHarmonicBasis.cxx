@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
@@ -171,12 +172,14 @@ void AddBasisArrays(vtkPolyData* output,
 
 //------------------------------------------------------------------------------
 // The polygons and strips of the input as triangles, through an internal vtkTriangleFilter
-// when the input holds anything but triangles. Vertices and lines are dropped.
+// when the input holds anything but triangles. Vertices and lines are dropped, and so are ghost
+// cells (vtkManifoldHarmonicsGhosts: another process owns them). The points are the input's.
 vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPolyData* input)
 {
-  if (input->GetNumberOfStrips() == 0 && input->GetPolys()->IsHomogeneous() == 3)
+  vtkSmartPointer<vtkPolyData> counted = vtkManifoldHarmonicsGhosts::CountedCells(input);
+  if (counted->GetNumberOfStrips() == 0 && counted->GetPolys()->IsHomogeneous() == 3)
   {
-    return input;
+    return counted;
   }
   vtkWarningWithObjectMacro(self, << "Triangulating polygons and triangle strips.");
   vtkNew<vtkTriangleFilter> triangulate;
@@ -185,7 +188,7 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPoly
 #endif
   triangulate->PassVertsOff();
   triangulate->PassLinesOff();
-  triangulate->SetInputData(input);
+  triangulate->SetInputData(counted);
   triangulate->Update();
   return triangulate->GetOutput();
 }
@@ -221,8 +224,9 @@ spectral::TriangleMesh ToTriangleMesh(vtkPolyData* surface)
 
 //------------------------------------------------------------------------------
 // The arrays of a distributed run on the output of one process: its rows of the harmonics and
-// mass, the eigenvalues, and DUPLICATEPOINT flags (added to any ghost array of the input) on
-// the points that a lower process also holds. The harmonics are converted to floats when
+// mass (also on its ghost points: the owner's rows), the eigenvalues, and the point ghost array:
+// DUPLICATEPOINT on the points another process owns, the input's other flags kept. The cell
+// ghost array is the input's. The harmonics are converted to floats when
 // `floats` is true.
 void AddPieceArrays(vtkPolyData* output,
   vtkPolyData* input,
@@ -246,15 +250,16 @@ void AddPieceArrays(vtkPolyData* output,
   output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
 
+  // The merge decides which process owns a point (NotOwnedPointFlag); other flags stay.
   vtkNew<vtkUnsignedCharArray> ghosts;
-  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
   ghosts->DeepCopy(rows.Duplicates);
   ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
-  vtkDataArray* existing = input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  vtkUnsignedCharArray* existing = vtkManifoldHarmonicsGhosts::PointGhosts(input);
+  const unsigned char kept =
+    static_cast<unsigned char>(~vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
   for (vtkIdType i = 0; existing && i < ghosts->GetNumberOfTuples(); ++i)
   {
-    ghosts->SetValue(
-      i, ghosts->GetValue(i) | static_cast<unsigned char>(existing->GetComponent(i, 0)));
+    ghosts->SetValue(i, ghosts->GetValue(i) | (existing->GetValue(i) & kept));
   }
   output->GetPointData()->AddArray(ghosts);
 

@@ -58,10 +58,13 @@
  * and more than one holds triangles, the pieces are gathered on process 0, the points they share
  * along their seams are merged (within 1e-12 of the bounding box diagonal), the basis of the
  * whole surface is computed there and every process receives the rows of its own points and
- * all eigenvalues. A shared point is owned by the lowest rank holding it; on the other
- * processes it is flagged vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array
- * (vtkGhostType), which vtkManifoldHarmonicTransform uses to count it once. Never a per-piece
- * basis. Test: Testing/ParaView/TestParallelManifoldHarmonics.py.in.
+ * all eigenvalues. Ghost cells (the vtkGhostType cell array, as D3 gives them) are left out of
+ * the surface: another process owns them. A shared point is owned by the lowest rank holding it
+ * as its own (not as a ghost point); on the other processes it is flagged
+ * vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array (vtkGhostType), which
+ * vtkManifoldHarmonicTransform uses to count it once; it still gets its rows of the basis, so
+ * that each piece is complete. Never a per-piece basis. Tests:
+ * Testing/ParaView/TestParallelManifoldHarmonics.py.in, TestParallelGhostCells.py.in.
  *
  * @warning The harmonics array holds n x m doubles (100 harmonics on a million points take
  * 800 MB), or n x m floats with BasisPrecision FLOAT (400 MB), and the eigensolver needs about

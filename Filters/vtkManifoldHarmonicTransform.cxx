@@ -8,6 +8,7 @@
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMultiProcessController.h"
@@ -93,7 +94,7 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   try
   {
     const spectral::Vector mass =
-      basis.MassVector().cwiseProduct(vtkManifoldHarmonicsParallel::OwnedPoints(input));
+      basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(input));
     lambda = basis.EigenvalueVector();
     for (std::size_t s = 0; s < signals.size(); ++s)
     {

@@ -9,12 +9,15 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
+
+#include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
 #include <cmath>
@@ -308,8 +311,9 @@ std::string MissingBasisAdvice(vtkPolyData* input)
   return "compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
 }
 //------------------------------------------------------------------------------
-spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input)
+spectral::TriangleMesh SurfaceTriangles(vtkPolyData* surface)
 {
+  vtkSmartPointer<vtkPolyData> input = vtkManifoldHarmonicsGhosts::CountedCells(surface);
   spectral::TriangleMesh mesh;
   mesh.Vertices = Signal(input->GetPoints()->GetData()).View();
   std::vector<int> corners;
@@ -340,4 +344,16 @@ spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input)
   return mesh;
 }
 
+//------------------------------------------------------------------------------
+std::vector<double> EdgeSums(vtkPolyData* input)
+{
+  std::vector<double> sums = { 0.0, 0.0 };
+  if (input->GetNumberOfPoints() > 0)
+  {
+    const spectral::TriangleMesh mesh = SurfaceTriangles(input);
+    sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
+    sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
+  }
+  return sums;
+}
 } // namespace vtkManifoldHarmonicsArrays

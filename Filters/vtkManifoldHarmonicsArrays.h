@@ -129,11 +129,18 @@ void FillSpectrum(vtkTable* table,
  */
 std::string MissingBasisAdvice(vtkPolyData* input);
 /**
- * The triangles of the polygons (as fans) and strips of a mesh, with all its points: what the
- * mean edge length behind the Nyquist frequency is measured on (vtkSpectralFilter,
- * vtkSpectralDescriptors).
+ * The triangles of the polygons (as fans) and strips of a mesh, with all its points, ghost
+ * cells left out (vtkManifoldHarmonicsGhosts::CountedCells): what the mean edge length behind
+ * the Nyquist frequency is measured on (vtkSpectralFilter, vtkSpectralDescriptors).
  */
 spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input);
+
+/**
+ * The sum of the edge lengths of the SurfaceTriangles of `input` (each triangle's three edges)
+ * and their number: added over the processes of a distributed run, they give the Nyquist
+ * frequency of the whole surface, spectral::NyquistFrequency(sums[0], sums[1]).
+ */
+std::vector<double> EdgeSums(vtkPolyData* input);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -8,6 +8,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkMath.h"
 #include "vtkMultiProcessController.h"
@@ -30,8 +31,12 @@ constexpr int BasisTag = 718202;
 constexpr int SumTag = 718203;
 
 //------------------------------------------------------------------------------
-// Points (n by 3 doubles) and triangles (3-component ids) of a piece, exact copies.
-void PieceArrays(vtkPolyData* piece, vtkDoubleArray* points, vtkIdTypeArray* triangles)
+// Points (n by 3 doubles), their ownership (1 for a point the piece owns, 0 for a ghost copy of
+// another process's point) and triangles (3-component ids) of a piece, exact copies.
+void PieceArrays(vtkPolyData* piece,
+  vtkDoubleArray* points,
+  vtkUnsignedCharArray* owned,
+  vtkIdTypeArray* triangles)
 {
   points->SetNumberOfComponents(3);
   triangles->SetNumberOfComponents(3);
@@ -40,6 +45,12 @@ void PieceArrays(vtkPolyData* piece, vtkDoubleArray* points, vtkIdTypeArray* tri
     return;
   }
   points->DeepCopy(piece->GetPoints()->GetData());
+  const spectral::Vector ownedPoints = vtkManifoldHarmonicsGhosts::OwnedPoints(piece);
+  owned->SetNumberOfTuples(ownedPoints.size());
+  for (vtkIdType i = 0; i < owned->GetNumberOfTuples(); ++i)
+  {
+    owned->SetValue(i, ownedPoints[i] > 0.0 ? 1 : 0);
+  }
   auto cells = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
   for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
   {
@@ -81,24 +92,36 @@ void ReceiveArray(vtkMultiProcessController* controller, vtkDataArray* array, in
 }
 
 //------------------------------------------------------------------------------
-// Adds one piece to the merged mesh: its points through the exact point merger, its triangles
-// renumbered. Records the piece's point map and the owner of newly inserted points.
+// Adds one piece to the merged mesh: its points through the point merger, its triangles
+// renumbered. Records the piece's point map and the owner of each point: the lowest rank that
+// holds it as its own (not a ghost copy), or the lowest rank that holds it if none does.
+// `ownerIsGhost[j]` tells whether the owner of merged point j so far holds it as a ghost.
 void MergePiece(int rank,
   vtkDoubleArray* points,
+  vtkUnsignedCharArray* owned,
   vtkIdTypeArray* triangles,
   vtkPointLocator* merger,
   vtkCellArray* mergedTriangles,
+  std::vector<bool>& ownerIsGhost,
   vtkManifoldHarmonicsParallel::MergedMesh& merged)
 {
   std::vector<vtkIdType>& map = merged.PointMaps[rank];
   map.resize(points->GetNumberOfTuples());
+  const bool hasOwnership = owned->GetNumberOfTuples() == points->GetNumberOfTuples();
   for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
   {
     double x[3];
     points->GetTypedTuple(i, x);
+    const bool ghost = hasOwnership && owned->GetValue(i) == 0;
     if (merger->InsertUniquePoint(x, map[i]))
     {
       merged.Owner.push_back(rank);
+      ownerIsGhost.push_back(ghost);
+    }
+    else if (ownerIsGhost[map[i]] && !ghost)
+    {
+      merged.Owner[map[i]] = rank;
+      ownerIsGhost[map[i]] = false;
     }
   }
   for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
@@ -111,7 +134,7 @@ void MergePiece(int rank,
 }
 
 //------------------------------------------------------------------------------
-// The rows of the points of one piece, and their duplicate flags (owned by a lower rank).
+// The rows of the points of one piece, and their duplicate flags (owned by another rank).
 void PieceRows(int rank,
   const vtkManifoldHarmonicsParallel::MergedMesh& merged,
   const spectral::RowMatrix& harmonics,
@@ -132,7 +155,7 @@ void PieceRows(int rank,
       harmonics.row(j).data(), harmonics.row(j).data() + m, piece.Harmonics->GetPointer(i * m));
     piece.Mass->SetValue(i, mass[j]);
     piece.Duplicates->SetValue(
-      i, merged.Owner[j] == rank ? 0 : vtkDataSetAttributes::DUPLICATEPOINT);
+      i, merged.Owner[j] == rank ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
   }
 }
 
@@ -255,20 +278,24 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
 {
   MergedMesh merged;
   vtkNew<vtkDoubleArray> points;
+  vtkNew<vtkUnsignedCharArray> owned;
   vtkNew<vtkIdTypeArray> triangles;
-  PieceArrays(piece, points, triangles);
+  PieceArrays(piece, points, owned, triangles);
   const int rank = controller->GetLocalProcessId();
   if (rank != 0)
   {
     SendArray(controller, points, 0, PieceTag);
+    SendArray(controller, owned, 0, PieceTag);
     SendArray(controller, triangles, 0, PieceTag);
     return merged;
   }
 
   const int size = controller->GetNumberOfProcesses();
   std::vector<vtkSmartPointer<vtkDoubleArray>> allPoints(size);
+  std::vector<vtkSmartPointer<vtkUnsignedCharArray>> allOwned(size);
   std::vector<vtkSmartPointer<vtkIdTypeArray>> allTriangles(size);
   allPoints[0] = points;
+  allOwned[0] = owned;
   allTriangles[0] = triangles;
   double bounds[6] = {
     VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN
@@ -279,9 +306,11 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
     {
       allPoints[r] = vtkSmartPointer<vtkDoubleArray>::New();
       allPoints[r]->SetNumberOfComponents(3);
+      allOwned[r] = vtkSmartPointer<vtkUnsignedCharArray>::New();
       allTriangles[r] = vtkSmartPointer<vtkIdTypeArray>::New();
       allTriangles[r]->SetNumberOfComponents(3);
       ReceiveArray(controller, allPoints[r], r, PieceTag);
+      ReceiveArray(controller, allOwned[r], r, PieceTag);
       ReceiveArray(controller, allTriangles[r], r, PieceTag);
     }
     for (int c = 0; c < 3 && allPoints[r]->GetNumberOfTuples() > 0; ++c)
@@ -305,9 +334,11 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
   merger->InitPointInsertion(mergedPoints, bounds);
   vtkNew<vtkCellArray> mergedTriangles;
   merged.PointMaps.resize(size);
+  std::vector<bool> ownerIsGhost;
   for (int r = 0; r < size; ++r)
   {
-    MergePiece(r, allPoints[r], allTriangles[r], merger, mergedTriangles, merged);
+    MergePiece(
+      r, allPoints[r], allOwned[r], allTriangles[r], merger, mergedTriangles, ownerIsGhost, merged);
   }
   merged.Surface = vtkSmartPointer<vtkPolyData>::New();
   merged.Surface->SetPoints(mergedPoints);
@@ -416,25 +447,4 @@ void SumOverRanks(vtkMultiProcessController* controller, std::vector<double>& va
   values = sums;
 }
 
-//------------------------------------------------------------------------------
-spectral::Vector OwnedPoints(vtkPolyData* input)
-{
-  const vtkIdType n = input->GetNumberOfPoints();
-  spectral::Vector owned = spectral::Vector::Ones(n);
-  vtkUnsignedCharArray* ghosts = vtkArrayDownCast<vtkUnsignedCharArray>(
-    input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  if (!ghosts || ghosts->GetNumberOfTuples() != n)
-  {
-    return owned;
-  }
-  const unsigned char notOwned = vtkDataSetAttributes::DUPLICATEPOINT;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    if (ghosts->GetValue(i) & notOwned)
-    {
-      owned[i] = 0.0;
-    }
-  }
-  return owned;
-}
 } // namespace vtkManifoldHarmonicsParallel

@@ -7,9 +7,11 @@
  *
  * The basis is global: vtkManifoldHarmonicBasis gathers the pieces on process 0, merges the
  * points that pieces duplicate along their seams, solves there and sends every process the rows
- * of its own points. A point held by several processes is owned by the lowest rank; on the
- * others it is flagged vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array, so that the
- * sums over points of vtkManifoldHarmonicTransform (then added over processes) count it once.
+ * of its own points. Ghost cells of the pieces are left out (vtkManifoldHarmonicsGhosts.h). A
+ * point held by several processes is owned by the lowest rank that holds it as its own (not as a
+ * ghost point; the lowest rank that holds it if none does); on the others it is flagged
+ * vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array, so that the sums over points of
+ * vtkManifoldHarmonicTransform (then added over processes) count it once.
  *
  * Every function here is collective: all processes of the controller must call it, including
  * those without data. Not installed and not wrapped.
@@ -45,17 +47,20 @@ struct MergedMesh
   vtkSmartPointer<vtkPolyData> Surface;
   /// PointMaps[r][i]: merged id of point i of the piece of process r.
   std::vector<std::vector<vtkIdType>> PointMaps;
-  /// Owner[j]: the lowest rank whose piece holds merged point j.
+  /// Owner[j]: the rank that owns merged point j (see above).
   std::vector<int> Owner;
 };
 
 /**
- * Gather the triangle pieces (points and triangles; `piece` may be empty) on process 0 and merge
- * coincident points exactly. \return the merged mesh on process 0, an empty MergedMesh elsewhere.
+ * Gather the triangle pieces (points, their point ghost flags and triangles; `piece` may be
+ * empty, its ghost cells are already left out by vtkManifoldHarmonicsGhosts::CountedCells) on
+ * process 0 and merge coincident points. \return the merged mesh on process 0, an empty MergedMesh
+ * elsewhere.
  */
 MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* piece);
 
-/// The rows of one process: harmonics (n_r by m), mass (n_r) and DUPLICATEPOINT flags (n_r).
+/// The rows of one process: harmonics (n_r by m), mass (n_r) and DUPLICATEPOINT flags (n_r) on
+/// the points another process owns.
 struct PieceBasis
 {
   vtkSmartPointer<vtkDoubleArray> Harmonics;
@@ -97,11 +102,6 @@ bool SumOverRanks(vtkMultiProcessController* controller,
 /// The sum of `values` over all processes, in place (collective).
 void SumOverRanks(vtkMultiProcessController* controller, std::vector<double>& values);
 
-/**
- * 1 for the points to count in sums over points, 0 for those a ghost array marks as duplicates
- * or ghosts of another process. Length n; all ones without a point ghost array.
- */
-spectral::Vector OwnedPoints(vtkPolyData* input);
 } // namespace vtkManifoldHarmonicsParallel
 
 #endif

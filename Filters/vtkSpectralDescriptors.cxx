@@ -9,8 +9,11 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
+#include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -41,11 +44,38 @@ struct Descriptor
   std::vector<std::string> Components;
 };
 
-/// The eigenvalues with the module's rule for zero ones (Spectral/Common/Eigenvalues.h).
-spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, vtkPolyData* input)
+/// The sums over the surface of this process: the area (the mass of the points it owns, see
+/// vtkManifoldHarmonicsGhosts) and the vtkManifoldHarmonicsArrays::EdgeSums, in that order; in
+/// a distributed run added over all processes (collective), so that they are the whole
+/// surface's. An input without the mass array adds no area (FindBasis reports it).
+std::vector<double> SurfaceSums(vtkMultiProcessController* controller, vtkPolyData* input)
 {
-  const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::SurfaceTriangles(input);
-  const double nyquist = mesh.Faces.rows() > 0 ? spectral::NyquistFrequency(mesh) : 0.0;
+  std::vector<double> sums = { 0.0, 0.0, 0.0 };
+  vtkDataArray* mass = input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass);
+  if (mass && mass->GetNumberOfTuples() == input->GetNumberOfPoints())
+  {
+    sums[0] = vtkManifoldHarmonicsArrays::Signal(mass).View().col(0).dot(
+      vtkManifoldHarmonicsGhosts::OwnedPoints(input));
+  }
+  const std::vector<double> edges = vtkManifoldHarmonicsArrays::EdgeSums(input);
+  std::copy(edges.begin(), edges.end(), sums.begin() + 1);
+  if (controller)
+  {
+    vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
+  }
+  return sums;
+}
+
+/// The eigenvalues with the module's rule for zero ones (Spectral/Common/Eigenvalues.h), on the
+/// scale of the Nyquist frequency from the EdgeSums of the whole surface (`sums` of SurfaceSums).
+spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, const std::vector<double>& sums)
+{
+  const double nyquist = spectral::NyquistFrequency(sums[1], sums[2]);
+  if (sums[2] > 0.0 && !(nyquist > 0.0))
+  {
+    throw spectral::InvalidInput(
+      "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
+  }
   spectral::Spectrum spectrum;
   spectrum.Lambda = lambda;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
@@ -286,7 +316,10 @@ void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
 }
 
 //------------------------------------------------------------------------------
-int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output, vtkTable* table)
+int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input,
+  double area,
+  vtkPolyData* output,
+  vtkTable* table)
 {
   if (this->ComputeHeatKernelSignature || this->ComputeWaveKernelSignature ||
     this->ComputeGlobalPointSignature || this->ComputeSpectralDistance)
@@ -298,15 +331,11 @@ int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output
                        "need the harmonics) are not. Turn them off to silence this warning, or "
                        "compute the harmonics.");
   }
-  const spectral::Vector mass = vtkManifoldHarmonicsArrays::Signal(
-    input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass))
-                                  .View()
-                                  .col(0);
   const spectral::Vector lambda = vtkManifoldHarmonicsArrays::Signal(
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues))
                                     .View()
                                     .col(0);
-  FillShapeDNA(lambda, mass.sum(), table);
+  FillShapeDNA(lambda, area, table);
   output->ShallowCopy(input);
   return 1;
 }
@@ -379,15 +408,25 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* shapeDNA = vtkTable::GetData(outputVector, 1);
   this->UsedSourcePoint = -1;
+  // Collective in a distributed run, so before any return: the area and edge sums of the whole
+  // surface. ParaView appends the tables of all processes: process 0 alone fills ShapeDNA.
+  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
+  const std::vector<double> sums = SurfaceSums(controller, input);
+  const double area = sums[0];
+  vtkNew<vtkTable> unshown;
+  vtkTable* table = !controller || controller->GetLocalProcessId() == 0 ? shapeDNA : unshown;
   if (input->GetNumberOfPoints() == 0)
   {
-    vtkWarningMacro(<< "No data to describe!");
+    if (!controller)
+    {
+      vtkWarningMacro(<< "No data to describe!");
+    }
     output->ShallowCopy(input);
     return 1;
   }
   if (SpectrumOnly(input))
   {
-    return this->ShapeDNAOnly(input, output, shapeDNA);
+    return this->ShapeDNAOnly(input, area, output, table);
   }
   vtkManifoldHarmonicsArrays::Basis basis;
   std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
@@ -398,7 +437,6 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
     return 0;
   }
   const spectral::Vector mass = basis.MassVector();
-  const double area = mass.sum();
   vtkIdType source = -1;
   if (this->ComputeSpectralDistance && (source = FindSource(this, input, mass)) < 0)
   {
@@ -414,7 +452,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   vtkNew<vtkFieldData> parameters;
   try
   {
-    const spectral::Spectrum spectrum = ToSpectrum(basis.EigenvalueVector(), input);
+    const spectral::Spectrum spectrum = ToSpectrum(basis.EigenvalueVector(), sums);
     if (this->ComputeHeatKernelSignature)
     {
       const spectral::Vector times = this->GetNumberOfHeatKernelTimes() > 0
@@ -500,7 +538,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
         {} });
       this->UsedSourcePoint = source;
     }
-    FillShapeDNA(spectrum.Lambda, area, shapeDNA);
+    FillShapeDNA(spectrum.Lambda, area, table);
   }
   catch (const std::exception& e)
   {

@@ -59,9 +59,12 @@
  * harmonics when a descriptor needs one. An aborted execution leaves both outputs empty.
  *
  * @warning The harmonics are read once per descriptor, in place; the arrays cost n doubles per
- * component (16 times, 100 energies). Distributed runs compute on each piece alone: the
- * signatures are pointwise and correct, but the distance source and the area of ShapeDNA are
- * those of the piece.
+ * component (16 times, 100 energies). Distributed runs: the area and the Nyquist frequency
+ * (the scale of zero eigenvalues) are those of the whole surface (summed over the processes,
+ * ghost cells left out and shared points counted once), so the signatures and ShapeDNA equal a
+ * serial run's; process 0 alone fills the ShapeDNA table. The distance source is still a point
+ * of each piece (SourcePoint is a point id of the piece, SourceLocation its nearest point in
+ * the piece): use the spectral distance in serial runs.
  *
  * Example: Examples/Python/descriptors.py. Tests: Filters/Testing/Cxx/
  * TestSpectralDescriptors.cxx, Testing/Core/TestDescriptors.cxx.
@@ -284,8 +287,9 @@ protected:
   double SourceLocation[3];
   vtkIdType UsedSourcePoint = -1;
 
-  /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics).
-  int ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output, vtkTable* table);
+  /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics), for a surface
+  /// of the given area.
+  int ShapeDNAOnly(vtkPolyData* input, double area, vtkPolyData* output, vtkTable* table);
 
 private:
   vtkSpectralDescriptors(const vtkSpectralDescriptors&) = delete;

@@ -2,8 +2,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSpectralFilter.h"
 
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
@@ -19,7 +17,6 @@
 #include "vtkTable.h"
 
 #include "Spectral/Common/Eigenvalues.h"
-#include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
 #include <cmath>
@@ -137,21 +134,9 @@ spectral::FilterParameters Parameters(vtkSpectralFilter* self)
   return parameters;
 }
 
-/// The sum of the edge lengths of the triangles of this process and their number of edges.
-std::vector<double> EdgeSums(vtkPolyData* input)
-{
-  std::vector<double> sums = { 0.0, 0.0 };
-  if (input->GetNumberOfPoints() > 0)
-  {
-    const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::SurfaceTriangles(input);
-    sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
-    sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
-  }
-  return sums;
-}
-
-/// The Nyquist frequency (spectral::NyquistFrequency) of the whole mesh from the EdgeSums of
-/// this process: in a distributed run the sums of all processes are added up (collective).
+/// The Nyquist frequency (spectral::NyquistFrequency) of the whole mesh from the
+/// vtkManifoldHarmonicsArrays::EdgeSums of this process (ghost cells left out): in a distributed
+/// run the sums of all processes are added up (collective).
 /// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
 double NyquistFrequency(vtkMultiProcessController* controller, std::vector<double> sums)
 {
@@ -503,7 +488,7 @@ void vtkSpectralFilter::UpdateEdgeSums(vtkPolyData* input)
   // the sums.
   if (input != this->EdgeSumsInput.GetPointer() || input->GetMTime() != this->EdgeSumsTime)
   {
-    const std::vector<double> sums = ::EdgeSums(input);
+    const std::vector<double> sums = vtkManifoldHarmonicsArrays::EdgeSums(input);
     this->EdgeSums[0] = sums[0];
     this->EdgeSums[1] = sums[1];
     this->EdgeSumsInput = input;

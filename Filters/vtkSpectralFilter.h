@@ -272,10 +272,10 @@ protected:
   vtkDoubleArray* ControlPoints;
 
   /**
-   * The sum of the edge lengths of the input's triangles and their number, behind the Nyquist
-   * frequency of the re-injection, kept with the input object they were computed on
-   * (EdgeSumsInput) and its MTime then (EdgeSumsTime): when only the filter's settings change,
-   * the mesh is not walked again. Another input object recomputes them even with the same
+   * The sum of the edge lengths of the input's triangles (ghost cells left out) and their number,
+   * behind the Nyquist frequency of the re-injection, kept with the input object they were
+   * computed on (EdgeSumsInput) and its MTime then (EdgeSumsTime): when only the filter's settings
+   * change, the mesh is not walked again. Another input object recomputes them even with the same
    * MTime (as vtkManifoldHarmonicSmoothing keys its basis).
    */
   void UpdateEdgeSums(vtkPolyData* input);
