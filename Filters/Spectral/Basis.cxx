@@ -25,7 +25,11 @@ void Report(const std::vector<std::string>& warnings, const Monitor& monitor, Ba
 }
 //------------------------------------------------------------------------------
 // Number of harmonics to compute: the request, clamped with a warning to the usable points.
-int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisResult& result)
+int ClampedHarmonics(int requested,
+  int usable,
+  const std::string& what,
+  const Monitor& monitor,
+  BasisResult& result)
 {
   if (requested < 1)
   {
@@ -37,7 +41,7 @@ int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisRes
     return requested;
   }
   Report({ "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
-           std::to_string(usable) + ", the number of points triangles use." },
+           std::to_string(usable) + ", the number of points " + what + "." },
     monitor,
     result);
   return usable;
@@ -292,12 +296,16 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   {
     throw InvalidInput(prepared.SmallComponents > 0
         ? "every connected component is smaller than MinimumComponentSize"
-        : "every triangle of the input is degenerate (zero area)");
+        : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
+                          : "every triangle of the input is degenerate (zero area)");
   }
   const bool window = options.UpperFrequency > 0.0;
-  int m = window
-    ? 0
-    : ClampedHarmonics(options.NumberOfHarmonics, static_cast<int>(used), monitor, result);
+  int m = window ? 0
+                 : ClampedHarmonics(options.NumberOfHarmonics,
+                     static_cast<int>(used),
+                     prepared.Volume ? "tetrahedra use" : "triangles use",
+                     monitor,
+                     result);
   if (options.CheckMemory && !window)
   {
     CheckMemory(mesh, used, m, options);
@@ -309,6 +317,12 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);
+  result.BoundaryPoints = ops.BoundaryPoints;
+  if (!window && ops.Stiffness.rows() < m)
+  {
+    m = ClampedHarmonics(
+      m, static_cast<int>(ops.Stiffness.rows()), "inside the boundary", monitor, result);
+  }
   std::pair<int, int> pairs(0, m);
   if (window)
   {
@@ -320,7 +334,11 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     }
   }
   result.Components = ops.Components.Count;
-  ReportComponents(result.Components, m, monitor, result);
+  result.ConstantHarmonics = ops.ConstantHarmonics;
+  if (ops.ConstantHarmonics)
+  {
+    ReportComponents(result.Components, m, monitor, result);
+  }
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
   monitor.Report(0.1);
   monitor.ThrowIfCancelled();
@@ -341,7 +359,8 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     ops.Components.Count,
     m,
     solve,
-    monitor.Scaled(0.1, 1.0));
+    monitor.Scaled(0.1, 1.0),
+    ops.ConstantHarmonics);
   result.Pairs.Eigenvalues /= s * s;
   result.Pairs.Eigenvectors /= s;
   result.LumpedMass = ops.LumpedMass * (s * s);
