@@ -417,7 +417,7 @@ void SumOverRanks(vtkMultiProcessController* controller, std::vector<double>& va
 }
 
 //------------------------------------------------------------------------------
-spectral::Vector OwnedPoints(vtkPolyData* input)
+spectral::Vector OwnedPoints(vtkDataSet* input)
 {
   const vtkIdType n = input->GetNumberOfPoints();
   spectral::Vector owned = spectral::Vector::Ones(n);

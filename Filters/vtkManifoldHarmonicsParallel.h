@@ -25,6 +25,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkDoubleArray;
 class vtkMultiProcessController;
 class vtkPolyData;
@@ -101,7 +102,7 @@ void SumOverRanks(vtkMultiProcessController* controller, std::vector<double>& va
  * 1 for the points to count in sums over points, 0 for those a ghost array marks as duplicates
  * or ghosts of another process. Length n; all ones without a point ghost array.
  */
-spectral::Vector OwnedPoints(vtkPolyData* input);
+spectral::Vector OwnedPoints(vtkDataSet* input);
 } // namespace vtkManifoldHarmonicsParallel
 
 #endif

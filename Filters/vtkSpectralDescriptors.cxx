@@ -14,12 +14,14 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
 #include "Spectral/Common/Eigenvalues.h"
 #include "Spectral/Filtering/Descriptors.h"
+#include "Spectral/Operators/Operators.h"
 
 #include <cmath>
 #include <cstdio>
@@ -42,10 +44,10 @@ struct Descriptor
 };
 
 /// The eigenvalues with the module's rule for zero ones (Spectral/Common/Eigenvalues.h).
-spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, vtkPolyData* input)
+spectral::Spectrum ToSpectrum(const spectral::Vector& lambda, vtkPointSet* input)
 {
-  const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::SurfaceTriangles(input);
-  const double nyquist = mesh.Faces.rows() > 0 ? spectral::NyquistFrequency(mesh) : 0.0;
+  const spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::ToCoreMesh(input).Mesh;
+  const double nyquist = spectral::EdgeCount(mesh) > 0.0 ? spectral::NyquistFrequency(mesh) : 0.0;
   spectral::Spectrum spectrum;
   spectrum.Lambda = lambda;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
@@ -119,7 +121,7 @@ void WarnTruncation(vtkSpectralDescriptors* self,
 }
 
 /// The source point of the distance, or -1 after an error.
-vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPolyData* input, const spectral::Vector& mass)
+vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPointSet* input, const spectral::Vector& mass)
 {
   vtkIdType source = self->GetSourcePoint();
   if (self->GetUseSourceLocation())
@@ -164,17 +166,22 @@ std::string CheckTimes(vtkSpectralDescriptors* self)
 
 /// Whether the input holds a spectrum without harmonics (vtkManifoldHarmonicBasis with
 /// EigenvaluesOnly): eigenvalues and mass, no harmonics array.
-bool SpectrumOnly(vtkPolyData* input)
+bool SpectrumOnly(vtkPointSet* input)
 {
   return !input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Harmonics) &&
     input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass) &&
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
 }
 
-/// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda A.
-void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
+/// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda |Omega|^(2/d), with the
+/// measure (area or volume) and the dimension d of the input (2, or 3 for a volume).
+void FillShapeDNA(const spectral::Vector& lambda,
+  double measure,
+  vtkPointSet* input,
+  vtkTable* table)
 {
-  const spectral::Vector scaled = spectral::ShapeDNA(lambda, area, 2);
+  const int dimension = vtkManifoldHarmonicsArrays::ToCoreMesh(input).Mesh.IsVolume() ? 3 : 2;
+  const spectral::Vector scaled = spectral::ShapeDNA(lambda, measure, dimension);
   vtkNew<vtkIdTypeArray> index;
   index->SetName(vtkManifoldHarmonicsNames::IndexColumn);
   index->SetNumberOfTuples(lambda.size());
@@ -286,7 +293,7 @@ void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
 }
 
 //------------------------------------------------------------------------------
-int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output, vtkTable* table)
+int vtkSpectralDescriptors::ShapeDNAOnly(vtkPointSet* input, vtkPointSet* output, vtkTable* table)
 {
   if (this->ComputeHeatKernelSignature || this->ComputeWaveKernelSignature ||
     this->ComputeGlobalPointSignature || this->ComputeSpectralDistance)
@@ -304,7 +311,7 @@ int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input, vtkPolyData* output
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues))
                                     .View()
                                     .col(0);
-  FillShapeDNA(lambda, mass.sum(), table);
+  FillShapeDNA(lambda, mass.sum(), input, table);
   output->ShallowCopy(input);
   return 1;
 }
@@ -358,6 +365,14 @@ const char* vtkSpectralDescriptors::ScaledEigenvalueColumnName()
 }
 
 //------------------------------------------------------------------------------
+int vtkSpectralDescriptors::RequestDataObject(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
 int vtkSpectralDescriptors::FillOutputPortInformation(int port, vtkInformation* info)
 {
   if (port == 1)
@@ -373,8 +388,8 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
   vtkTable* shapeDNA = vtkTable::GetData(outputVector, 1);
   this->UsedSourcePoint = -1;
   if (input->GetNumberOfPoints() == 0)
@@ -498,7 +513,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
         {} });
       this->UsedSourcePoint = source;
     }
-    FillShapeDNA(spectrum.Lambda, area, shapeDNA);
+    FillShapeDNA(spectrum.Lambda, area, input, shapeDNA);
   }
   catch (const std::exception& e)
   {

@@ -311,8 +311,8 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     CheckMemory(mesh, used, m, options);
   }
 
-  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the harmonics
-  // (M-normalized, M an area) as 1 / s, the mass as s^2.
+  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an area
+  // or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
   const double s = UnitScale(prepared.Mesh.Vertices);
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
@@ -361,9 +361,12 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     solve,
     monitor.Scaled(0.1, 1.0),
     ops.ConstantHarmonics);
+  // The mass is an area (a volume) and scales as s^d, d = 2 (3); M-normalized harmonics as
+  // s^(-d/2).
+  const double d = prepared.Volume ? 3.0 : 2.0;
   result.Pairs.Eigenvalues /= s * s;
-  result.Pairs.Eigenvectors /= s;
-  result.LumpedMass = ops.LumpedMass * (s * s);
+  result.Pairs.Eigenvectors /= std::pow(s, 0.5 * d);
+  result.LumpedMass = ops.LumpedMass * std::pow(s, d);
   result.InputPointIds = std::move(ops.InputPointIds);
   if (window)
   {

@@ -492,6 +492,12 @@ void VolumeDefects()
   two.Vertices *= 1000.0;
   const BasisResult pair = Solve(two, 4, BoundaryCondition::Neumann);
   Check(pair.Components == 2, "two components");
+  CheckNear(pair.LumpedMass.sum(), 2e9, 1e-6, "the lumped mass is the volume in the mesh's units");
+  const Eigen::MatrixXd gram =
+    pair.Pairs.Eigenvectors.transpose() * pair.LumpedMass.asDiagonal() * pair.Pairs.Eigenvectors;
+  CheckBelow((gram - Eigen::MatrixXd::Identity(4, 4)).cwiseAbs().maxCoeff(),
+    1e-9,
+    "the harmonics are M-orthonormal in the mesh's units");
   CheckBelow(std::abs(pair.Pairs.Eigenvalues[1]), 1e-12, "two zero eigenvalues");
   CheckNear(pair.Pairs.Eigenvalues[2] * 1e6,
     clean.Pairs.Eigenvalues[1],

@@ -652,8 +652,8 @@ int ConnectedComponents(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 double MeanEdgeLength(const TriangleMesh& mesh)
 {
-  const Eigen::Index edges = 3 * mesh.Faces.rows() + 6 * mesh.Tets.rows();
-  if (edges == 0)
+  const double edges = EdgeCount(mesh);
+  if (edges == 0.0)
   {
     return 0.0;
   }
@@ -675,6 +675,12 @@ double MeanEdgeLength(const TriangleMesh& mesh)
       }
     }
   }
-  return sum / static_cast<double>(edges);
+  return sum / edges;
+}
+
+//------------------------------------------------------------------------------
+double EdgeCount(const TriangleMesh& mesh)
+{
+  return 3.0 * static_cast<double>(mesh.Faces.rows()) + 6.0 * static_cast<double>(mesh.Tets.rows());
 }
 } // namespace spectral

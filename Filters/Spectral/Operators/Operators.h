@@ -167,6 +167,9 @@ ComponentLabels LabelComponents(const SparseMatrix& pattern);
 /// Number of connected components (points joined by cell edges; isolated points count too).
 int ConnectedComponents(const TriangleMesh& mesh);
 
+/// The number of cell edges, each counted once per cell: 3 per triangle, 6 per tetrahedron.
+double EdgeCount(const TriangleMesh& mesh);
+
 /// Mean edge length over all cell edges (each edge counted once per cell). 0 for no cells.
 double MeanEdgeLength(const TriangleMesh& mesh);
 } // namespace spectral
