@@ -55,7 +55,8 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
     static_cast<std::uint64_t>(used),
     m,
     options.Solver.BandSize,
-    options.EigenvaluesOnly ? 0 : options.BytesPerValue);
+    options.EigenvaluesOnly ? 0 : options.BytesPerValue,
+    mesh.IsVolume());
   const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
   if (available != 0 && need.Total() > available)
   {
