@@ -20,6 +20,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -44,29 +45,13 @@ vtkStandardNewMacro(vtkManifoldHarmonicBasis);
 static_assert(
   vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS == spectral::DefaultNumberOfHarmonics,
   "the default number of harmonics has its home in Spectral/Common/Defaults.h");
+static_assert(
+  vtkManifoldHarmonicBasis::NEUMANN == static_cast<int>(spectral::BoundaryCondition::Neumann) &&
+    vtkManifoldHarmonicBasis::DIRICHLET == static_cast<int>(spectral::BoundaryCondition::Dirichlet),
+  "the boundary conditions have their home in Spectral/Operators/Laplacian.h");
 
 namespace
 {
-//------------------------------------------------------------------------------
-// Copies point coordinates of any value type into the core's #V by 3 double matrix.
-struct CopyPointsWorker
-{
-  template<typename ArrayT>
-  void operator()(ArrayT* array, spectral::Points& out) const
-  {
-    const auto tuples = vtk::DataArrayTupleRange<3>(array);
-    vtkSMPTools::For(0,
-      array->GetNumberOfTuples(),
-      [&tuples, &out](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          out.row(i) << tuples[i][0], tuples[i][1], tuples[i][2];
-        }
-      });
-  }
-};
-
 //------------------------------------------------------------------------------
 // Writes row r of an #used by m column-major matrix into row Ids[r] of a row-major buffer with
 // m values per row (the layout of a vtkDoubleArray or vtkFloatArray with m components).
@@ -113,7 +98,7 @@ vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
 //------------------------------------------------------------------------------
 // Adds the harmonics (point data, zero on the points Ids does not reach; floats when `floats`)
 // to the output. Ids maps the rows of the core's matrix to output points.
-void AddHarmonicsArray(vtkPolyData* output,
+void AddHarmonicsArray(vtkDataSet* output,
   const spectral::DenseMatrix& H,
   const std::vector<int>& ids,
   bool floats)
@@ -139,7 +124,7 @@ void AddHarmonicsArray(vtkPolyData* output,
 //------------------------------------------------------------------------------
 // Adds the harmonics (when the result has them: not with EigenvaluesOnly) and the lumped mass
 // (point data, zero on unused points) and the eigenvalues (field data) to the output.
-void AddBasisArrays(vtkPolyData* output,
+void AddBasisArrays(vtkDataSet* output,
   const spectral::EigenResult& result,
   const std::vector<int>& ids,
   const spectral::Vector& lumped,
@@ -191,35 +176,6 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPoly
   triangulate->SetInputData(counted);
   triangulate->Update();
   return triangulate->GetOutput();
-}
-
-//------------------------------------------------------------------------------
-// Points and triangles of an all-triangle vtkPolyData in the core's form.
-spectral::TriangleMesh ToTriangleMesh(vtkPolyData* surface)
-{
-  spectral::TriangleMesh mesh;
-  mesh.Vertices.resize(surface->GetNumberOfPoints(), 3);
-  vtkDataArray* coordinates = surface->GetPoints()->GetData();
-  CopyPointsWorker worker;
-  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(
-        coordinates, worker, mesh.Vertices))
-  {
-    worker(coordinates, mesh.Vertices);
-  }
-
-  vtkCellArray* polys = surface->GetPolys();
-  mesh.Faces.resize(polys->GetNumberOfCells(), 3);
-  auto cells = vtk::TakeSmartPointer(polys->NewIterator());
-  Eigen::Index row = 0;
-  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell(), ++row)
-  {
-    vtkIdType npts;
-    const vtkIdType* pts;
-    cells->GetCurrentCell(npts, pts);
-    mesh.Faces.row(row) << static_cast<int>(pts[0]), static_cast<int>(pts[1]),
-      static_cast<int>(pts[2]);
-  }
-  return mesh;
 }
 
 //------------------------------------------------------------------------------
@@ -324,6 +280,8 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.Operators.Laplacian = self->GetLaplacian() == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY
     ? spectral::LaplacianKind::IntrinsicDelaunay
     : spectral::LaplacianKind::Cotangent;
+  options.Operators.Boundary =
+    static_cast<spectral::BoundaryCondition>(self->GetBoundaryCondition());
   options.Operators.Mass = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT
     ? spectral::MassKind::Consistent
     : spectral::MassKind::Lumped;
@@ -362,6 +320,7 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   : NumberOfHarmonics(DEFAULT_NUMBER_OF_HARMONICS)
   , MassMatrix(LUMPED)
   , Laplacian(COTANGENT)
+  , BoundaryCondition(NEUMANN)
   , BandSize(0)
   , Tolerance(1e-11)
   , MaxIterations(1000)
@@ -398,17 +357,30 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector);
+  vtkPolyData* surface = vtkPolyData::SafeDownCast(input);
+  const bool hasSurface = surface && surface->GetNumberOfPolys() + surface->GetNumberOfStrips() > 0;
   if (vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController())
   {
-    // The basis is global: never a per-piece basis when several processes hold the surface.
-    if (vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface) > 1)
+    // The basis is global: never a per-piece basis when several processes hold the mesh. Only
+    // vtkPolyData surfaces are gathered so far (both counts are collective).
+    const bool otherCells = !surface && input->GetNumberOfCells() > 0;
+    const int others = vtkManifoldHarmonicsParallel::CountRanks(controller, otherCells);
+    if (vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface || otherCells) > 1)
     {
-      return this->ComputeDistributedBasis(controller, input, output);
+      if (others > 0)
+      {
+        vtkErrorMacro(<< "Distributed runs take vtkPolyData surfaces only for now: this mesh ("
+                      << input->GetClassName()
+                      << ") is held by several processes. Compute its harmonics in a serial "
+                         "run, or gather it on one process first (Merge Blocks, Reduction).");
+        output->Initialize();
+        return 0;
+      }
+      return this->ComputeDistributedBasis(controller, surface, vtkPolyData::SafeDownCast(output));
     }
-    if (!hasSurface)
+    if (!hasSurface && !otherCells)
     {
       // Another process (or none) holds the whole surface.
       output->ShallowCopy(input);
@@ -478,7 +450,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* output)
+int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -487,11 +459,33 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
                 << ", memory limit " << this->MemoryLimit << " MiB");
 
   const vtkIdType numPts = input->GetNumberOfPoints();
-  if (numPts == 0 || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  // Polygons of a vtkPolyData through vtkTriangleFilter (concave ones too); other point sets'
+  // cells through ToCoreMesh.
+  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
+  vtkSmartPointer<vtkPointSet> triangulated = input;
+  if (polygons && numPts > 0 && polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
   {
-    vtkWarningMacro(<< "No polygons to compute manifold harmonics on; passing the input through.");
+    triangulated = ::Triangulate(this, polygons);
+  }
+  const vtkManifoldHarmonicsArrays::CoreMesh cells =
+    vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
+  const std::string problem = cells.Problem();
+  if (!problem.empty() || cells.IsPointCloud())
+  {
+    vtkErrorMacro(<< (problem.empty() ? vtkManifoldHarmonicsArrays::PointCloudProblem : problem));
+    output->Initialize();
+    return 0;
+  }
+  if (numPts == 0 || !cells.HasCells())
+  {
+    vtkWarningMacro(<< "No polygons or volume cells to compute manifold harmonics on; passing "
+                       "the input through.");
     output->ShallowCopy(input);
     return 1;
+  }
+  for (const std::string& warning : cells.Warnings())
+  {
+    vtkWarningMacro(<< warning);
   }
   if (numPts > VTK_INT_MAX)
   {
@@ -501,9 +495,8 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPolyData* input, vtkPolyData* outp
 
   try
   {
-    vtkSmartPointer<vtkPolyData> surface = ::Triangulate(this, input);
     const spectral::BasisResult basis =
-      spectral::ComputeBasis(::ToTriangleMesh(surface), ::CoreOptions(this), ::FilterMonitor(this));
+      spectral::ComputeBasis(cells.Mesh, ::CoreOptions(this), ::FilterMonitor(this));
     this->SetProgressText("Write");
     output->ShallowCopy(input);
     ::AddBasisArrays(
@@ -558,6 +551,9 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Laplacian: "
      << (this->Laplacian == INTRINSIC_DELAUNAY ? "Intrinsic Delaunay" : "Cotangent")
      << " (default Cotangent)\n";
+  os << indent
+     << "Boundary Condition: " << (this->BoundaryCondition == DIRICHLET ? "Dirichlet" : "Neumann")
+     << " (default Neumann)\n";
   os << indent << "Band Size: " << this->BandSize << " (default 0, automatic)\n";
   os << indent << "Tolerance: " << this->Tolerance << " (default 1e-11)\n";
   os << indent << "Max Iterations: " << this->MaxIterations << " (default 1000)\n";

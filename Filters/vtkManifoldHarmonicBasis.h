@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkManifoldHarmonicBasis
- * @brief   compute the manifold harmonics (Laplace-Beltrami eigenfunctions) of a surface
+ * @brief   compute the manifold harmonics (Laplace-Beltrami eigenfunctions) of a surface or a
+ *          volume
  *
  * vtkManifoldHarmonicBasis computes the m smallest eigenpairs of the generalized eigenproblem
  * L h = lambda M h on a triangle mesh, where L is the cotangent stiffness matrix (symmetric,
@@ -11,9 +12,18 @@
  * discrete analogue of the Fourier basis on the surface, ordered by frequency. Their eigenvalues
  * lambda_k are the squared frequencies; lambda_0 = 0 with a constant h_0 on a connected surface.
  *
- * The input is a vtkPolyData. Polygons and triangle strips are triangulated (with a warning);
- * vertices and lines are ignored. Triangles of numerically zero area are left out, and points
- * that no remaining triangle uses get zero harmonics and zero mass.
+ * The input is any vtkPointSet (vtkPolyData, vtkUnstructuredGrid, vtkStructuredGrid, ...) and
+ * the output has its type. Its 2-D cells make a surface: polygons, quadrilaterals, pixels and
+ * triangle strips are triangulated (with a warning). Its 3-D cells make a volume, whose
+ * harmonics are the eigenfunctions of the Laplacian of the solid: tetrahedra get the linear (P1)
+ * finite-element stiffness (the cotangent weights of the volume) and a quarter of their volume
+ * as lumped mass; hexahedra, voxels, wedges and pyramids are split into tetrahedra (with a
+ * warning; neighbours split a shared face alike, see vtkManifoldHarmonicsArrays.h). An input
+ * that mixes 2-D and 3-D cells, or has cells of another kind (quadratic, polyhedral), is an
+ * error naming the counts. Vertices and lines are ignored; a point cloud (points and no cells
+ * but vertices) is an error: point clouds are not supported yet. Cells of numerically zero
+ * area or volume are left out, and points that no remaining cell uses get zero harmonics and
+ * zero mass.
  *
  * The output is a shallow copy of the input with new arrays (names from the static accessors
  * below):
@@ -33,7 +43,8 @@
  *   accepted when either is at most 1e-8: it is then an exact eigenpair of operators within
  *   1e-8 of the assembled ones, entry by entry (spectral::BackwardErrors), or its residual is.
  *
- * Parameters: NumberOfHarmonics (default DEFAULT_NUMBER_OF_HARMONICS), MassMatrix (default LUMPED),
+ * Parameters: NumberOfHarmonics (default DEFAULT_NUMBER_OF_HARMONICS), BoundaryCondition
+ * (default NEUMANN; DIRICHLET: the harmonics vanish on the boundary), MassMatrix (default LUMPED),
  * Laplacian (default COTANGENT; INTRINSIC_DELAUNAY for meshes with badly shaped triangles),
  * BasisPrecision (default DOUBLE; FLOAT halves the harmonics array), the solver settings BandSize
  * (default 0, automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and
@@ -55,8 +66,9 @@
  * during the solve and honours AbortExecute: an aborted execution leaves the output empty.
  *
  * Distributed runs (MPI: pvbatch, pvserver): when the global controller has several processes
- * and more than one holds triangles, the pieces are gathered on process 0, the points they share
- * along their seams are merged (within 1e-12 of the bounding box diagonal), the basis of the
+ * and more than one holds triangles, the pieces are gathered on process 0 (surfaces in
+ * vtkPolyData only: a distributed volume or unstructured grid is an error for now), the points they
+ * share along their seams are merged (within 1e-12 of the bounding box diagonal), the basis of the
  * whole surface is computed there and every process receives the rows of its own points and
  * all eigenvalues. Ghost cells (the vtkGhostType cell array, as D3 gives them) are left out of
  * the surface: another process owns them. A shared point is owned by the lowest rank holding it
@@ -91,11 +103,13 @@
 #define vtkManifoldHarmonicBasis_h
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 
 class vtkMultiProcessController;
+class vtkPointSet;
+class vtkPolyData;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPolyDataAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPointSetAlgorithm
 {
 public:
   /**
@@ -109,7 +123,7 @@ public:
   /**
    * Standard methods for type information and printing.
    */
-  vtkTypeMacro(vtkManifoldHarmonicBasis, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicBasis, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -195,6 +209,31 @@ public:
   vtkGetMacro(Laplacian, int);
   void SetLaplacianToCotangent() { this->SetLaplacian(COTANGENT); }
   void SetLaplacianToIntrinsicDelaunay() { this->SetLaplacian(INTRINSIC_DELAUNAY); }
+  ///@}
+
+  /**
+   * The condition the harmonics satisfy on the boundary of the surface (its boundary edges) or
+   * volume (the faces of one tetrahedron only), the values of spectral::BoundaryCondition.
+   * NEUMANN: the natural condition, zero normal derivative; each connected component has a
+   * constant harmonic of eigenvalue 0. DIRICHLET: the harmonics vanish on the boundary; the
+   * boundary points get zero harmonics and zero mass (so vtkSpectralFilter and
+   * vtkManifoldHarmonicSmoothing pass them through unchanged) and no eigenvalue is 0. A closed
+   * surface has no boundary: DIRICHLET is then ignored with a warning.
+   */
+  enum BoundaryConditionType
+  {
+    NEUMANN = 0,
+    DIRICHLET = 1
+  };
+
+  ///@{
+  /**
+   * Choose the boundary condition: NEUMANN (0) or DIRICHLET (1). Default is NEUMANN.
+   */
+  vtkSetClampMacro(BoundaryCondition, int, NEUMANN, DIRICHLET);
+  vtkGetMacro(BoundaryCondition, int);
+  void SetBoundaryConditionToNeumann() { this->SetBoundaryCondition(NEUMANN); }
+  void SetBoundaryConditionToDirichlet() { this->SetBoundaryCondition(DIRICHLET); }
   ///@}
 
   ///@{
@@ -339,7 +378,7 @@ protected:
    * The basis of the whole `input` into `output` (a serial run, or process 0 of a distributed
    * one, on the merged pieces).
    */
-  int ComputeBasis(vtkPolyData* input, vtkPolyData* output);
+  int ComputeBasis(vtkPointSet* input, vtkPointSet* output);
 
   /**
    * Distributed run (MPI, several processes hold triangles): gather and merge the pieces on
@@ -352,6 +391,7 @@ protected:
   int NumberOfHarmonics;
   int MassMatrix;
   int Laplacian;
+  int BoundaryCondition;
   int BandSize;
   double Tolerance;
   int MaxIterations;

@@ -9,11 +9,13 @@
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
+#include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
 
@@ -29,7 +31,7 @@ namespace
 //------------------------------------------------------------------------------
 // omega_max = sqrt(lambda_{m-1}) from the basis output, 0 when it has no eigenvalues (an empty
 // piece of a distributed run).
-double HighestFrequency(vtkPolyData* basisOutput)
+double HighestFrequency(vtkPointSet* basisOutput)
 {
   vtkDataArray* lambda =
     basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
@@ -43,7 +45,7 @@ double HighestFrequency(vtkPolyData* basisOutput)
 //------------------------------------------------------------------------------
 // Whether a basis with eigenvalues has none but the zero ones of its constant harmonics (one per
 // connected component), by the rule of the spectral filter that ran on it.
-bool OnlyConstantHarmonics(vtkPolyData* basisOutput, vtkSpectralFilter* filter)
+bool OnlyConstantHarmonics(vtkPointSet* basisOutput, vtkSpectralFilter* filter)
 {
   vtkDataArray* lambda =
     basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
@@ -63,13 +65,13 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , CutoffFraction(0.5)
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
   , NumberOfThreads(0)
-  , Input(vtkSmartPointer<vtkPolyData>::New())
+  , BoundaryCondition(vtkManifoldHarmonicBasis::NEUMANN)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
   , Filter(vtkSmartPointer<vtkSpectralFilter>::New())
 {
-  // The three stages on a shallow copy, so that the internal pipeline does not touch the input.
-  this->Basis->SetInputData(this->Input);
+  // The three stages on a shallow copy (made in RequestData, of the input's type), so that the
+  // internal pipeline does not touch the input.
   this->Basis->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
   this->Transform->SetInputConnection(this->Basis->GetOutputPort());
@@ -95,19 +97,25 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector);
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
   // Nothing to smooth without polygons: pass the input on, as the basis does, rather than let
   // the internal stages report errors about a basis they did not get. (In a distributed run the
   // stages are collective and every process runs them.)
-  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0 &&
-    !vtkManifoldHarmonicsParallel::DistributedController())
+  const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
+  if (!cells.HasCells() && !vtkManifoldHarmonicsParallel::DistributedController())
   {
+    if (cells.IsPointCloud())
+    {
+      vtkErrorMacro(<< vtkManifoldHarmonicsArrays::PointCloudProblem);
+      output->Initialize();
+      return 0;
+    }
     if (input->GetNumberOfPoints() > 0)
     {
-      vtkWarningMacro(<< "The input has no polygons: passed on unchanged.");
+      vtkWarningMacro(<< "The input has no polygons or volume cells: passed on unchanged.");
     }
     output->ShallowCopy(input);
     return 1;
@@ -117,6 +125,11 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   // process sees the same parameters and the same kind of input change.
   if (input != this->InputData.GetPointer() || input->GetMTime() != this->InputTime)
   {
+    if (!this->Input || !this->Input->IsA(input->GetClassName()))
+    {
+      this->Input = vtk::TakeSmartPointer(input->NewInstance());
+      this->Basis->SetInputData(this->Input);
+    }
     this->Input->ShallowCopy(input);
     this->InputData = input;
     this->InputTime = input->GetMTime();
@@ -125,6 +138,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   this->Basis->SetBasisPrecision(this->BasisPrecision);
   this->Basis->SetNumberOfThreads(this->NumberOfThreads);
+  this->Basis->SetBoundaryCondition(this->BoundaryCondition);
   // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
   this->Basis->SetAbortExecute(this->GetAbortExecute());
   this->Basis->Update();
@@ -157,7 +171,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
     return 0;
   }
   output->ShallowCopy(input);
-  vtkPolyData* filtered = this->Filter->GetOutput();
+  vtkPointSet* filtered = this->Filter->GetOutput();
   if (filtered->GetNumberOfPoints() != input->GetNumberOfPoints())
   {
     if (input->GetNumberOfPoints() == 0)
@@ -195,6 +209,9 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default "
      << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n";
   os << indent << "CutoffFraction: " << this->CutoffFraction << " (default 0.5)\n";
+  os << indent << "BoundaryCondition: "
+     << (this->BoundaryCondition == vtkManifoldHarmonicBasis::DIRICHLET ? "Dirichlet" : "Neumann")
+     << " (default Neumann)\n";
   os << indent << "BasisPrecision: "
      << (this->BasisPrecision == vtkManifoldHarmonicBasis::FLOAT ? "Float" : "Double")
      << " (default Double)\n";

@@ -17,7 +17,8 @@
  * omega^2), and 1 keeps (nearly) all of them. The step from gain 1 to gain 0 is a raised cosine
  * of relative width 0.1 around the cutoff (vtkSpectralFilter::Transition).
  *
- * Input: a vtkPolyData with polygons (triangulated internally). Output: the input (cells, point
+ * Input: any vtkPointSet with polygons (triangulated internally) or linear 3-D cells (split into
+ * tetrahedra internally; see vtkManifoldHarmonicBasis). Output: the input (cells, point
  * and cell data) with smoothed points of the same precision; no basis array is added. For the
  * harmonics, the spectrum or other transfer functions, use the three filters themselves. As with
  * VTK's smoothers, point normals of the input are passed on unchanged and describe the unsmoothed
@@ -51,15 +52,15 @@
 
 #include "vtkManifoldHarmonicBasis.h"   // For BasisPrecisionType, DEFAULT_NUMBER_OF_HARMONICS
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 #include "vtkSmartPointer.h" // For the internal pipeline
 #include "vtkWeakPointer.h"  // For the internal pipeline
 
 class vtkManifoldHarmonicTransform;
-class vtkPolyData;
+class vtkPointSet;
 class vtkSpectralFilter;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing : public vtkPolyDataAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing : public vtkPointSetAlgorithm
 {
 public:
   ///@{
@@ -67,7 +68,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkManifoldHarmonicSmoothing* New();
-  vtkTypeMacro(vtkManifoldHarmonicSmoothing, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicSmoothing, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -121,6 +122,21 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /**
+   * The boundary condition of the harmonics, passed on to
+   * vtkManifoldHarmonicBasis::SetBoundaryCondition: vtkManifoldHarmonicBasis::NEUMANN (the
+   * boundary moves freely) or vtkManifoldHarmonicBasis::DIRICHLET (the boundary points stay
+   * where they are: the smoothing passes them through unchanged). Default is
+   * vtkManifoldHarmonicBasis::NEUMANN.
+   */
+  vtkSetClampMacro(BoundaryCondition,
+    int,
+    vtkManifoldHarmonicBasis::NEUMANN,
+    vtkManifoldHarmonicBasis::DIRICHLET);
+  vtkGetMacro(BoundaryCondition, int);
+  ///@}
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
@@ -133,14 +149,15 @@ protected:
   double CutoffFraction;
   int BasisPrecision;
   int NumberOfThreads;
+  int BoundaryCondition;
 
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
 
   // The internal pipeline, kept between executions so that a new cutoff reuses the basis.
-  vtkSmartPointer<vtkPolyData> Input;    // shallow copy of the input, replaced when it changes
-  vtkWeakPointer<vtkPolyData> InputData; // the input object of that copy
+  vtkSmartPointer<vtkPointSet> Input;    // shallow copy of the input, replaced when it changes
+  vtkWeakPointer<vtkPointSet> InputData; // the input object of that copy
   vtkMTimeType InputTime = 0;            // and its MTime then
   vtkSmartPointer<vtkManifoldHarmonicBasis> Basis;
   vtkSmartPointer<vtkManifoldHarmonicTransform> Transform;

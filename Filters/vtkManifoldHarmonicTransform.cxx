@@ -15,6 +15,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
@@ -46,7 +47,7 @@ bool IsBasisArray(const char* name)
 }
 
 /// The signals to transform: the coordinates, then the enabled point-data arrays in input order.
-std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPolyData* input)
+std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPointSet* input)
 {
   std::vector<NamedSignal> signals;
   const bool points = self->GetTransformPoints();
@@ -79,7 +80,7 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
 /// ghost array may mark as duplicates of another process's points (those count 0).
 /// \return An error message, empty on success.
 std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
-  vtkPolyData* input,
+  vtkPointSet* input,
   std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>& coefficients,
   spectral::Vector& lambda)
 {
@@ -194,6 +195,14 @@ const char* vtkManifoldHarmonicTransform::FrequencyColumnName()
 }
 
 //------------------------------------------------------------------------------
+int vtkManifoldHarmonicTransform::RequestDataObject(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
 int vtkManifoldHarmonicTransform::FillOutputPortInformation(int port, vtkInformation* info)
 {
   if (port == 1)
@@ -209,8 +218,8 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
   vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
   vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();

@@ -17,7 +17,8 @@
  * with the lumped mass (the default); a basis computed with the consistent mass is orthonormal
  * for D only to discretization error, and so are its coefficients.
  *
- * Input: the output of vtkManifoldHarmonicBasis, i.e. a vtkPolyData with the point-data arrays
+ * Input: the output of vtkManifoldHarmonicBasis, i.e. any vtkPointSet (a surface or a volume)
+ * with the point-data arrays
  * `ManifoldHarmonics` (n tuples of m components) and `ManifoldHarmonicsMass` (n values) and the
  * field-data array `ManifoldHarmonicsEigenvalues` (m values, ascending). Their names come from
  * vtkManifoldHarmonicBasis::HarmonicsArrayName(), MassArrayName() and EigenvaluesArrayName().
@@ -61,13 +62,13 @@
 #define vtkManifoldHarmonicTransform_h
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 
 class vtkCallbackCommand;
 class vtkDataArraySelection;
 class vtkTable;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicTransform : public vtkPolyDataAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicTransform : public vtkPointSetAlgorithm
 {
 public:
   ///@{
@@ -75,7 +76,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkManifoldHarmonicTransform* New();
-  vtkTypeMacro(vtkManifoldHarmonicTransform, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicTransform, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -131,6 +132,10 @@ protected:
   ~vtkManifoldHarmonicTransform() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
+  int RequestDataObject(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;

@@ -5,14 +5,20 @@
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
@@ -73,7 +79,7 @@ spectral::RowMatrix InPlace(const vtkManifoldHarmonicsArrays::Basis& basis, cons
   return f(spectral::BasisView(basis.Doubles, basis.NumberOfPoints, basis.NumberOfHarmonics));
 }
 
-std::string Missing(vtkPolyData* input, const char* what, const char* name)
+std::string Missing(vtkDataSet* input, const char* what, const char* name)
 {
   std::ostringstream message;
   message << "Missing " << what << " '" << name
@@ -129,7 +135,7 @@ spectral::Vector Basis::EigenvalueVector() const
 }
 
 //------------------------------------------------------------------------------
-std::string FindBasis(vtkPolyData* input, Basis& basis)
+std::string FindBasis(vtkDataSet* input, Basis& basis)
 {
   const char* harmonicsName = vtkManifoldHarmonicsNames::Harmonics;
   const char* massName = vtkManifoldHarmonicsNames::Mass;
@@ -300,58 +306,293 @@ void FillSpectrum(vtkTable* table,
 }
 
 //------------------------------------------------------------------------------
-std::string MissingBasisAdvice(vtkPolyData* input)
+std::string MissingBasisAdvice(vtkDataSet* input)
 {
-  if (input->GetNumberOfPoints() > 0 && input->GetNumberOfPolys() == 0 &&
-    input->GetNumberOfStrips() == 0)
+  vtkPointSet* points = vtkPointSet::SafeDownCast(input);
+  if (points && points->GetNumberOfPoints() > 0 && !ToCoreMesh(points).HasCells())
   {
-    return "the input has no polygons, so ManifoldHarmonicBasis passed it through without a "
-           "basis. Give it a surface (polygons or triangle strips).";
+    return "the input has no polygons or volume cells, so ManifoldHarmonicBasis passed it "
+           "through without a basis. Give it a surface (polygons or triangle strips) or a "
+           "volume (tetrahedra, hexahedra, wedges, pyramids).";
   }
   return "compute the basis with ManifoldHarmonicBasis (vtkManifoldHarmonicBasis) upstream.";
 }
+
 //------------------------------------------------------------------------------
-spectral::TriangleMesh SurfaceTriangles(vtkPolyData* surface)
+bool CoreMesh::IsPointCloud() const
 {
-  vtkSmartPointer<vtkPolyData> input = vtkManifoldHarmonicsGhosts::CountedCells(surface);
-  spectral::TriangleMesh mesh;
-  mesh.Vertices = Signal(input->GetPoints()->GetData()).View();
-  std::vector<int> corners;
-  vtkIdType size = 0;
-  const vtkIdType* ids = nullptr;
-  auto polygons = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-  for (polygons->GoToFirstCell(); !polygons->IsDoneWithTraversal(); polygons->GoToNextCell())
-  {
-    polygons->GetCurrentCell(size, ids);
-    for (vtkIdType c = 1; c + 1 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[0]), static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]) });
-    }
-  }
-  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-  {
-    strips->GetCurrentCell(size, ids);
-    for (vtkIdType c = 0; c + 2 < size; ++c)
-    {
-      corners.insert(corners.end(),
-        { static_cast<int>(ids[c]), static_cast<int>(ids[c + 1]), static_cast<int>(ids[c + 2]) });
-    }
-  }
-  mesh.Faces = Eigen::Map<const spectral::Triangles>(
-    corners.data(), static_cast<Eigen::Index>(corners.size() / 3), 3);
-  return mesh;
+  return this->Mesh.Vertices.rows() > 0 && !this->HasCells() && this->LineCells == 0 &&
+    this->UnsupportedCells == 0;
 }
 
 //------------------------------------------------------------------------------
-std::vector<double> EdgeSums(vtkPolyData* input)
+std::string CoreMesh::Problem() const
+{
+  std::ostringstream problem;
+  if (this->UnsupportedCells > 0)
+  {
+    problem << this->UnsupportedCells << " cells are of a kind the harmonics do not take (the "
+            << "first a " << this->UnsupportedType
+            << "): give linear cells (Tessellate in ParaView, vtkTessellatorFilter, turns "
+               "quadratic cells into linear ones).";
+  }
+  else if (this->SurfaceCells > 0 && this->VolumeCells > 0)
+  {
+    problem << "The input mixes " << this->SurfaceCells << " 2-D cells (triangles, polygons) and "
+            << this->VolumeCells
+            << " 3-D cells (tetrahedra, hexahedra, ...): the harmonics are those of a surface "
+               "or of a volume, not both. Extract one kind first (Extract Cells By Type, "
+               "vtkExtractCellsByType).";
+  }
+  return problem.str();
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> CoreMesh::Warnings() const
+{
+  std::vector<std::string> warnings;
+  if (this->SplitPolygons > 0)
+  {
+    warnings.push_back(
+      "Triangulating " + std::to_string(this->SplitPolygons) + " polygons and triangle strips.");
+  }
+  if (this->SplitVolumeCells > 0)
+  {
+    warnings.push_back("Split " + std::to_string(this->SplitVolumeCells) +
+      " hexahedra, voxels, wedges and pyramids into tetrahedra (neighbours split their shared "
+      "faces alike).");
+  }
+  return warnings;
+}
+
+namespace
+{
+/// The faces of the linear 3-D cells, as local point ids in cyclic order.
+using Faces = std::vector<std::vector<int>>;
+const Faces HexahedronFaces = { { 0, 3, 2, 1 },
+  { 4, 5, 6, 7 },
+  { 0, 1, 5, 4 },
+  { 1, 2, 6, 5 },
+  { 2, 3, 7, 6 },
+  { 3, 0, 4, 7 } };
+const Faces WedgeFaces = { { 0, 1, 2 },
+  { 3, 5, 4 },
+  { 0, 1, 4, 3 },
+  { 1, 2, 5, 4 },
+  { 2, 0, 3, 5 } };
+const Faces PyramidFaces = { { 0, 1, 2, 3 }, { 0, 1, 4 }, { 1, 2, 4 }, { 2, 3, 4 }, { 3, 0, 4 } };
+
+/// The cells being collected.
+struct Collector
+{
+  std::vector<int> Triangles;
+  std::vector<int> Tets;
+
+  void Triangle(vtkIdType a, vtkIdType b, vtkIdType c)
+  {
+    this->Triangles.insert(
+      this->Triangles.end(), { static_cast<int>(a), static_cast<int>(b), static_cast<int>(c) });
+  }
+
+  /// A convex cell coned from its point of smallest id (see CoreMesh).
+  void Split(const vtkIdType* pts, const Faces& faces)
+  {
+    int apex = 0;
+    for (const auto& face : faces)
+    {
+      for (int local : face)
+      {
+        apex = pts[local] < pts[apex] ? local : apex;
+      }
+    }
+    for (const auto& face : faces)
+    {
+      if (std::find(face.begin(), face.end(), apex) != face.end())
+      {
+        continue;
+      }
+      std::vector<vtkIdType> ids;
+      for (int local : face)
+      {
+        ids.push_back(pts[local]);
+      }
+      const int low = static_cast<int>(std::min_element(ids.begin(), ids.end()) - ids.begin());
+      const int first = ids.size() == 4 ? low % 2 : 0; // the diagonal through the smallest id
+      for (std::size_t t = 1; t + 1 < ids.size(); ++t)
+      {
+        this->Tets.insert(this->Tets.end(),
+          { static_cast<int>(pts[apex]),
+            static_cast<int>(ids[first]),
+            static_cast<int>(ids[(first + t) % ids.size()]),
+            static_cast<int>(ids[(first + t + 1) % ids.size()]) });
+      }
+    }
+  }
+
+  /// Adds one input cell; counts it in `out`.
+  void Add(int type, vtkIdType npts, const vtkIdType* pts, CoreMesh& out)
+  {
+    switch (type)
+    {
+      case VTK_TRIANGLE:
+        ++out.SurfaceCells;
+        this->Triangle(pts[0], pts[1], pts[2]);
+        break;
+      case VTK_QUAD:
+      case VTK_POLYGON:
+        ++out.SurfaceCells;
+        ++out.SplitPolygons;
+        for (vtkIdType c = 1; c + 1 < npts; ++c)
+        {
+          this->Triangle(pts[0], pts[c], pts[c + 1]);
+        }
+        break;
+      case VTK_PIXEL:
+        ++out.SurfaceCells;
+        ++out.SplitPolygons;
+        this->Triangle(pts[0], pts[1], pts[3]);
+        this->Triangle(pts[0], pts[3], pts[2]);
+        break;
+      case VTK_TRIANGLE_STRIP:
+        ++out.SurfaceCells;
+        ++out.SplitPolygons;
+        for (vtkIdType c = 0; c + 2 < npts; ++c)
+        {
+          this->Triangle(pts[c], pts[c + 1], pts[c + 2]);
+        }
+        break;
+      case VTK_TETRA:
+        ++out.VolumeCells;
+        this->Tets.insert(this->Tets.end(),
+          { static_cast<int>(pts[0]),
+            static_cast<int>(pts[1]),
+            static_cast<int>(pts[2]),
+            static_cast<int>(pts[3]) });
+        break;
+      case VTK_HEXAHEDRON:
+      case VTK_WEDGE:
+      case VTK_PYRAMID:
+        ++out.VolumeCells;
+        ++out.SplitVolumeCells;
+        this->Split(pts,
+          type == VTK_HEXAHEDRON ? HexahedronFaces
+                                 : (type == VTK_WEDGE ? WedgeFaces : PyramidFaces));
+        break;
+      case VTK_VOXEL:
+      {
+        ++out.VolumeCells;
+        ++out.SplitVolumeCells;
+        const vtkIdType hexahedron[8] = {
+          pts[0], pts[1], pts[3], pts[2], pts[4], pts[5], pts[7], pts[6]
+        };
+        this->Split(hexahedron, HexahedronFaces);
+        break;
+      }
+      case VTK_EMPTY_CELL:
+      case VTK_VERTEX:
+      case VTK_POLY_VERTEX:
+        ++out.VertexCells;
+        break;
+      case VTK_LINE:
+      case VTK_POLY_LINE:
+        ++out.LineCells;
+        break;
+      default:
+        if (out.UnsupportedCells++ == 0)
+        {
+          out.UnsupportedType = vtkCellTypes::GetClassNameFromTypeId(type);
+        }
+    }
+  }
+};
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+CoreMesh ToCoreMesh(vtkPointSet* input)
+{
+  CoreMesh out;
+  if (input->GetPoints())
+  {
+    out.Mesh.Vertices = Signal(input->GetPoints()->GetData()).View();
+  }
+  Collector cells;
+  vtkIdType size = 0;
+  const vtkIdType* ids = nullptr;
+  // Ghost cells (copies of other processes' cells) are left out: vtkManifoldHarmonicsGhosts.h.
+  vtkUnsignedCharArray* ghosts = vtkManifoldHarmonicsGhosts::CellGhosts(input);
+  const auto counted = [ghosts](vtkIdType cell)
+  { return !ghosts || !(ghosts->GetValue(cell) & vtkManifoldHarmonicsGhosts::IgnoredCellFlags); };
+  if (vtkPolyData* poly = vtkPolyData::SafeDownCast(input))
+  {
+    // The cell arrays directly: no cell-type lookup (BuildCells) on a large surface. Cell ids
+    // run over vertices, lines, polygons and strips, in this order.
+    vtkIdType cell = 0;
+    const auto each = [&](vtkCellArray* array, int type)
+    {
+      auto it = vtk::TakeSmartPointer(array->NewIterator());
+      for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cell)
+      {
+        if (!counted(cell))
+        {
+          continue;
+        }
+        it->GetCurrentCell(size, ids);
+        const int kind = type != VTK_POLYGON ? type : (size == 3 ? VTK_TRIANGLE : VTK_POLYGON);
+        cells.Add(kind, size, ids, out);
+      }
+    };
+    each(poly->GetVerts(), VTK_POLY_VERTEX);
+    each(poly->GetLines(), VTK_POLY_LINE);
+    each(poly->GetPolys(), VTK_POLYGON);
+    each(poly->GetStrips(), VTK_TRIANGLE_STRIP);
+  }
+  else
+  {
+    vtkNew<vtkIdList> points;
+    for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+    {
+      if (counted(c))
+      {
+        input->GetCellPoints(c, points);
+        cells.Add(input->GetCellType(c), points->GetNumberOfIds(), points->GetPointer(0), out);
+      }
+    }
+  }
+  out.Mesh.Faces = Eigen::Map<const spectral::Triangles>(
+    cells.Triangles.data(), static_cast<Eigen::Index>(cells.Triangles.size() / 3), 3);
+  out.Mesh.Tets = Eigen::Map<const spectral::Tetrahedra>(
+    cells.Tets.data(), static_cast<Eigen::Index>(cells.Tets.size() / 4), 4);
+  return out;
+}
+
+//------------------------------------------------------------------------------
+int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkPointSet* input =
+    inInfo ? vtkPointSet::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())) : nullptr;
+  if (!input)
+  {
+    return 0;
+  }
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkDataObject* output = info->Get(vtkDataObject::DATA_OBJECT());
+  if (!output || !output->IsA(input->GetClassName()))
+  {
+    vtkSmartPointer<vtkDataObject> created = vtk::TakeSmartPointer(input->NewInstance());
+    info->Set(vtkDataObject::DATA_OBJECT(), created);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> EdgeSums(vtkPointSet* input)
 {
   std::vector<double> sums = { 0.0, 0.0 };
   if (input->GetNumberOfPoints() > 0)
   {
-    const spectral::TriangleMesh mesh = SurfaceTriangles(input);
-    sums[1] = 3.0 * static_cast<double>(mesh.Faces.rows());
+    const spectral::TriangleMesh mesh = ToCoreMesh(input).Mesh;
+    sums[1] = spectral::EdgeCount(mesh);
     sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
   }
   return sums;

@@ -22,8 +22,10 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkDoubleArray;
-class vtkPolyData;
+class vtkInformationVector;
+class vtkPointSet;
 class vtkTable;
 
 namespace vtkManifoldHarmonicsArrays
@@ -71,7 +73,7 @@ struct Basis
  * \return An empty string on success, otherwise a message naming the missing or inconsistent
  *         array and the filter that produces it.
  */
-std::string FindBasis(vtkPolyData* input, Basis& basis);
+std::string FindBasis(vtkDataSet* input, Basis& basis);
 
 /**
  * The values of a data array as an n by c row-major matrix of doubles: a view of the array's
@@ -124,23 +126,75 @@ void FillSpectrum(vtkTable* table,
 
 /**
  * The message of a filter that needs the basis arrays and did not find them: why they are
- * missing (an input without polygons, which vtkManifoldHarmonicBasis passes through without a
- * basis) or which filter to run upstream.
+ * missing (an input without polygons or volume cells, which vtkManifoldHarmonicBasis passes
+ * through without a basis) or which filter to run upstream.
  */
-std::string MissingBasisAdvice(vtkPolyData* input);
-/**
- * The triangles of the polygons (as fans) and strips of a mesh, with all its points, ghost
- * cells left out (vtkManifoldHarmonicsGhosts::CountedCells): what the mean edge length behind
- * the Nyquist frequency is measured on (vtkSpectralFilter, vtkSpectralDescriptors).
- */
-spectral::TriangleMesh SurfaceTriangles(vtkPolyData* input);
+std::string MissingBasisAdvice(vtkDataSet* input);
 
 /**
- * The sum of the edge lengths of the SurfaceTriangles of `input` (each triangle's three edges)
- * and their number: added over the processes of a distributed run, they give the Nyquist
- * frequency of the whole surface, spectral::NyquistFrequency(sums[0], sums[1]).
+ * The cells of any vtkPointSet in the core's form (spectral::TriangleMesh), with what the
+ * conversion did to them. Every point of the input is a point of the mesh; ghost cells are
+ * left out (the rule of vtkManifoldHarmonicsGhosts.h).
+ *
+ * - 2-D cells: triangles as they are; quadrilaterals, pixels and polygons (as fans) and
+ *   triangle strips split into triangles.
+ * - 3-D cells: tetrahedra as they are; hexahedra, voxels, wedges and pyramids split into
+ *   tetrahedra, conformingly: each cell is coned from its point of smallest id over the faces
+ *   that do not hold it, and each quadrilateral face is split along the diagonal through its
+ *   point of smallest id, so two cells that share a face split it alike.
+ * - vertices and lines are left out (a point set with no other cell is a point cloud).
+ * - any other cell (quadratic, polyhedral, ...) is counted as unsupported.
  */
-std::vector<double> EdgeSums(vtkPolyData* input);
+struct CoreMesh
+{
+  spectral::TriangleMesh Mesh;
+  /// 2-D and 3-D input cells.
+  vtkIdType SurfaceCells = 0;
+  vtkIdType VolumeCells = 0;
+  /// 2-D cells other than triangles split into triangles; 3-D cells other than tetrahedra split
+  /// into tetrahedra.
+  vtkIdType SplitPolygons = 0;
+  vtkIdType SplitVolumeCells = 0;
+  /// Vertex and line cells (left out), and cells of a kind the module does not take.
+  vtkIdType VertexCells = 0;
+  vtkIdType LineCells = 0;
+  vtkIdType UnsupportedCells = 0;
+  /// The class name of the first unsupported cell.
+  std::string UnsupportedType;
+
+  /// Whether there is a surface or a volume to compute harmonics on.
+  bool HasCells() const { return this->SurfaceCells + this->VolumeCells > 0; }
+  /// Whether the input is a point cloud: points, and no cell but vertices.
+  bool IsPointCloud() const;
+  /// Why the cells cannot be used (2-D and 3-D cells mixed, unsupported cells); empty if they
+  /// can.
+  std::string Problem() const;
+  /// What the conversion changed (cells split), one sentence each.
+  std::vector<std::string> Warnings() const;
+};
+
+/// The error of the filters given a point cloud (CoreMesh::IsPointCloud).
+constexpr const char* PointCloudProblem =
+  "The input is a point cloud (points and no cells but vertices): point clouds are not "
+  "supported yet. Give a surface (polygons) or a volume (3-D cells), e.g. by reconstructing "
+  "one (Delaunay 3D, Surface reconstruction).";
+
+/// Convert the cells of a point set (see CoreMesh).
+CoreMesh ToCoreMesh(vtkPointSet* input);
+
+/**
+ * RequestDataObject of the filters whose first output has the type of their input (any
+ * vtkPointSet): makes output port 0 an instance of the input's class; other ports keep the
+ * types their FillOutputPortInformation names.
+ */
+int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+
+/**
+ * The sum of the edge lengths of the cells of `input` (ToCoreMesh, ghost cells left out) and
+ * their number (spectral::EdgeCount): added over the processes of a distributed run, they give
+ * the Nyquist frequency of the whole mesh, spectral::NyquistFrequency(sums[0], sums[1]).
+ */
+std::vector<double> EdgeSums(vtkPointSet* input);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -27,6 +27,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkDoubleArray;
 class vtkMultiProcessController;
 class vtkPolyData;

@@ -17,12 +17,14 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
 #include "Spectral/Common/Eigenvalues.h"
 #include "Spectral/Filtering/Descriptors.h"
+#include "Spectral/Operators/Operators.h"
 
 #include <cmath>
 #include <cstdio>
@@ -44,11 +46,11 @@ struct Descriptor
   std::vector<std::string> Components;
 };
 
-/// The sums over the surface of this process: the area (the mass of the points it owns, see
-/// vtkManifoldHarmonicsGhosts) and the vtkManifoldHarmonicsArrays::EdgeSums, in that order; in
-/// a distributed run added over all processes (collective), so that they are the whole
+/// The sums over the surface (volume) of this process: the area (volume) (the mass of the points it
+/// owns, see vtkManifoldHarmonicsGhosts) and the vtkManifoldHarmonicsArrays::EdgeSums, in that
+/// order; in a distributed run added over all processes (collective), so that they are the whole
 /// surface's. An input without the mass array adds no area (FindBasis reports it).
-std::vector<double> SurfaceSums(vtkMultiProcessController* controller, vtkPolyData* input)
+std::vector<double> SurfaceSums(vtkMultiProcessController* controller, vtkPointSet* input)
 {
   std::vector<double> sums = { 0.0, 0.0, 0.0 };
   vtkDataArray* mass = input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass);
@@ -149,7 +151,7 @@ void WarnTruncation(vtkSpectralDescriptors* self,
 }
 
 /// The source point of the distance, or -1 after an error.
-vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPolyData* input, const spectral::Vector& mass)
+vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPointSet* input, const spectral::Vector& mass)
 {
   vtkIdType source = self->GetSourcePoint();
   if (self->GetUseSourceLocation())
@@ -194,17 +196,22 @@ std::string CheckTimes(vtkSpectralDescriptors* self)
 
 /// Whether the input holds a spectrum without harmonics (vtkManifoldHarmonicBasis with
 /// EigenvaluesOnly): eigenvalues and mass, no harmonics array.
-bool SpectrumOnly(vtkPolyData* input)
+bool SpectrumOnly(vtkPointSet* input)
 {
   return !input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Harmonics) &&
     input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass) &&
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
 }
 
-/// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda A.
-void FillShapeDNA(const spectral::Vector& lambda, double area, vtkTable* table)
+/// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda |Omega|^(2/d), with the
+/// measure (area or volume) and the dimension d of the input (2, or 3 for a volume).
+void FillShapeDNA(const spectral::Vector& lambda,
+  double measure,
+  vtkPointSet* input,
+  vtkTable* table)
 {
-  const spectral::Vector scaled = spectral::ShapeDNA(lambda, area, 2);
+  const int dimension = vtkManifoldHarmonicsArrays::ToCoreMesh(input).Mesh.IsVolume() ? 3 : 2;
+  const spectral::Vector scaled = spectral::ShapeDNA(lambda, measure, dimension);
   vtkNew<vtkIdTypeArray> index;
   index->SetName(vtkManifoldHarmonicsNames::IndexColumn);
   index->SetNumberOfTuples(lambda.size());
@@ -316,9 +323,9 @@ void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
 }
 
 //------------------------------------------------------------------------------
-int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input,
+int vtkSpectralDescriptors::ShapeDNAOnly(vtkPointSet* input,
   double area,
-  vtkPolyData* output,
+  vtkPointSet* output,
   vtkTable* table)
 {
   if (this->ComputeHeatKernelSignature || this->ComputeWaveKernelSignature ||
@@ -335,7 +342,7 @@ int vtkSpectralDescriptors::ShapeDNAOnly(vtkPolyData* input,
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues))
                                     .View()
                                     .col(0);
-  FillShapeDNA(lambda, area, table);
+  FillShapeDNA(lambda, area, input, table);
   output->ShallowCopy(input);
   return 1;
 }
@@ -389,6 +396,14 @@ const char* vtkSpectralDescriptors::ScaledEigenvalueColumnName()
 }
 
 //------------------------------------------------------------------------------
+int vtkSpectralDescriptors::RequestDataObject(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
 int vtkSpectralDescriptors::FillOutputPortInformation(int port, vtkInformation* info)
 {
   if (port == 1)
@@ -404,8 +419,8 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
   vtkTable* shapeDNA = vtkTable::GetData(outputVector, 1);
   this->UsedSourcePoint = -1;
   // Collective in a distributed run, so before any return: the area and edge sums of the whole
@@ -538,7 +553,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
         {} });
       this->UsedSourcePoint = source;
     }
-    FillShapeDNA(spectrum.Lambda, area, table);
+    FillShapeDNA(spectrum.Lambda, area, input, table);
   }
   catch (const std::exception& e)
   {

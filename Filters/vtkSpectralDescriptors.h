@@ -31,8 +31,8 @@
  *   Lipman, Rustamov and Funkhouser, ACM TOG 2010).
  * - Output port 1 (`ShapeDNA`, Reuter, Wolter and Peinecke, CAD 2006): a vtkTable of m rows,
  *   `Index` (k), `Eigenvalue` (lambda_k) and `ScaledEigenvalue` (lambda_k A, A the area, the sum
- *   of the lumped mass): equal for shapes that differ by a uniform scaling. (Tetrahedral meshes
- *   will scale by V^{2/3}, spectral::ShapeDNA's dimension argument.)
+ *   of the lumped mass; lambda_k V^{2/3}, V the volume, for an input of 3-D cells): equal for
+ *   shapes that differ by a uniform scaling.
  *
  * The eigenvalues of the constant harmonics (one per connected component) are those that
  * vtkManifoldHarmonicsArrays::IsNonZeroEigenvalue calls zero (below 1e-10 omega_N^2, omega_N =
@@ -44,7 +44,7 @@
  * (spectral::HeatKernelHarmonicsNeeded). The WKS energies always lie inside the computed
  * spectrum, with the paper's margins of 2 sigma at both ends.
  *
- * Input: the output of vtkManifoldHarmonicBasis (any vtkPolyData with the point-data arrays
+ * Input: the output of vtkManifoldHarmonicBasis (any vtkPointSet with the point-data arrays
  * `ManifoldHarmonics`, double or float, read in place, and `ManifoldHarmonicsMass`, and the
  * field-data array `ManifoldHarmonicsEigenvalues`). Output port 0: a shallow copy of the input
  * plus the enabled point-data arrays (vtkDoubleArray) and the field-data arrays
@@ -75,12 +75,12 @@
 #define vtkSpectralDescriptors_h
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 
 class vtkDoubleArray;
 class vtkTable;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralDescriptors : public vtkPolyDataAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralDescriptors : public vtkPointSetAlgorithm
 {
 public:
   ///@{
@@ -88,7 +88,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkSpectralDescriptors* New();
-  vtkTypeMacro(vtkSpectralDescriptors, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkSpectralDescriptors, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -267,6 +267,10 @@ protected:
   ~vtkSpectralDescriptors() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
+  int RequestDataObject(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
@@ -288,8 +292,8 @@ protected:
   vtkIdType UsedSourcePoint = -1;
 
   /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics), for a surface
-  /// of the given area.
-  int ShapeDNAOnly(vtkPolyData* input, double area, vtkPolyData* output, vtkTable* table);
+  /// of the given area (a volume of the given volume).
+  int ShapeDNAOnly(vtkPointSet* input, double area, vtkPointSet* output, vtkTable* table);
 
 private:
   vtkSpectralDescriptors(const vtkSpectralDescriptors&) = delete;

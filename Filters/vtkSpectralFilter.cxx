@@ -12,6 +12,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTable.h"
@@ -44,7 +45,7 @@ struct FilterJob
 /// The signals to filter: every <Signal>_Coefficients field array whose signal is on the input.
 /// \return An error message if coefficients disagree with the basis or their signal.
 std::string FindJobs(vtkSpectralFilter* self,
-  vtkPolyData* input,
+  vtkPointSet* input,
   const vtkManifoldHarmonicsArrays::Basis& basis,
   std::vector<FilterJob>& jobs)
 {
@@ -230,7 +231,7 @@ void WriteSignal(const FilterJob& job,
   const spectral::RowMatrix& values,
   const spectral::RowMatrix& filteredCoefficients,
   bool replaceInput,
-  vtkPolyData* output)
+  vtkPointSet* output)
 {
   const bool replace = job.IsPoints || replaceInput;
   const std::string name =
@@ -278,6 +279,14 @@ vtkSpectralFilter::vtkSpectralFilter()
   this->ControlPoints->SetNumberOfComponents(2);
   this->AddControlPoint(0.0, 1.0);
   this->AddControlPoint(1.0, 0.0);
+}
+
+//------------------------------------------------------------------------------
+int vtkSpectralFilter::RequestDataObject(vtkInformation* vtkNotUsed(request),
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
 }
 
 //------------------------------------------------------------------------------
@@ -394,8 +403,8 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
   vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
   // Collective in a distributed run, so before any return.
@@ -481,7 +490,7 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
 }
 
 //------------------------------------------------------------------------------
-void vtkSpectralFilter::UpdateEdgeSums(vtkPolyData* input)
+void vtkSpectralFilter::UpdateEdgeSums(vtkPointSet* input)
 {
   // The mesh is walked again only when the input changed (a new upstream execution, or another
   // input object, which may have the same MTime): changing the filter's settings alone re-uses

@@ -61,13 +61,13 @@
 #define vtkSpectralFilter_h
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 #include "vtkWeakPointer.h" // For the input of the kept edge sums
 
 class vtkDoubleArray;
 class vtkTable;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkPolyDataAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkPointSetAlgorithm
 {
 public:
   ///@{
@@ -75,7 +75,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkSpectralFilter* New();
-  vtkTypeMacro(vtkSpectralFilter, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkSpectralFilter, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -255,6 +255,10 @@ protected:
   ~vtkSpectralFilter() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
+  int RequestDataObject(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
 
   int RequestData(vtkInformation* request,
     vtkInformationVector** inputVector,
@@ -278,9 +282,9 @@ protected:
    * change, the mesh is not walked again. Another input object recomputes them even with the same
    * MTime (as vtkManifoldHarmonicSmoothing keys its basis).
    */
-  void UpdateEdgeSums(vtkPolyData* input);
+  void UpdateEdgeSums(vtkPointSet* input);
   double EdgeSums[2] = { 0.0, 0.0 };
-  vtkWeakPointer<vtkPolyData> EdgeSumsInput;
+  vtkWeakPointer<vtkPointSet> EdgeSumsInput;
   vtkMTimeType EdgeSumsTime = 0;
 
   double FrequencyRange[2];

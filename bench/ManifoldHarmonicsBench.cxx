@@ -20,13 +20,19 @@
  * threads (default 0: every core). --eigenvalues-only computes the spectrum alone
  * (BasisOptions::EigenvaluesOnly: no harmonics kept; the orthonormality column is then "-").
  *
- * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--threads T] [--filter]
- *        [--eigenvalues-only] [--scipy] [--scipy-max-n N] [--workdir DIR]
+ * With --volume the mesh is a tetrahedral unit ball of about n points (Testing/Core/Meshes.h,
+ * TetrahedralBall: a cube of Kuhn tetrahedra mapped radially) instead of the torus, and the row
+ * ends with the entries of the LDL^T factor per row (its fill-in: a volume's factor fills far
+ * more than a surface's).
+ *
+ * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--volume] [--threads T]
+ *        [--filter] [--eigenvalues-only] [--scipy] [--scipy-max-n N] [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
 #include "Basis.h"
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
+#include "Solver/SupernodalLDLT.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -56,6 +62,8 @@ struct Settings
   int ScipyMaxN = 200000;
   /// The torus with the defects of a range scan (ScanMesh).
   bool Scan = false;
+  /// A tetrahedral ball instead of the torus.
+  bool Volume = false;
   /// Threads of the eigensolver; 0 = every core.
   int Threads = 0;
   /// The spectrum alone (BasisOptions::EigenvaluesOnly).
@@ -208,6 +216,12 @@ std::string FilterStageColumn(const spectral::TriangleMesh& mesh,
  */
 spectral::TriangleMesh CaseMesh(const Settings& settings, int n)
 {
+  if (settings.Volume)
+  {
+    // (k + 1)^3 points.
+    const int k = std::max(1, static_cast<int>(std::lround(std::cbrt(static_cast<double>(n)))) - 1);
+    return spectral::testing::TetrahedralBall(k);
+  }
   const spectral::TriangleMesh torus = spectral::testing::NoisyTorusOfSize(n, 0.02);
   if (!settings.Scan)
   {
@@ -267,6 +281,18 @@ int RunCase(const Settings& settings, int n, int m)
     filter = FilterStageColumn(mesh, result, M.diagonal());
   }
 
+  if (settings.Volume)
+  {
+    // The fill-in of the factor of L - sigma M (the symbolic analysis alone, untimed).
+    const spectral::SupernodalLDLT symbolic(L);
+    char buffer[64];
+    std::snprintf(buffer,
+      sizeof(buffer),
+      "  factor %.0f entries/row",
+      static_cast<double>(symbolic.FactorEntries()) / static_cast<double>(L.rows()));
+    filter += buffer;
+  }
+
   std::string scipy = "";
   if (settings.Scipy && L.rows() <= settings.ScipyMaxN)
   {
@@ -321,7 +347,7 @@ Settings Parse(int argc, char* argv[])
   const auto usage = [argv]()
   {
     std::fprintf(stderr,
-      "usage: %s [--case N:M]... [--band K] [--scan] [--threads T] [--filter] "
+      "usage: %s [--case N:M]... [--band K] [--scan] [--volume] [--threads T] [--filter] "
       "[--eigenvalues-only] [--scipy] "
       "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
@@ -376,6 +402,10 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--scan")
     {
       settings.Scan = true;
+    }
+    else if (arg == "--volume")
+    {
+      settings.Volume = true;
     }
     else if (arg == "--threads" && i + 1 < argc)
     {

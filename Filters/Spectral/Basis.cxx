@@ -25,7 +25,11 @@ void Report(const std::vector<std::string>& warnings, const Monitor& monitor, Ba
 }
 //------------------------------------------------------------------------------
 // Number of harmonics to compute: the request, clamped with a warning to the usable points.
-int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisResult& result)
+int ClampedHarmonics(int requested,
+  int usable,
+  const std::string& what,
+  const Monitor& monitor,
+  BasisResult& result)
 {
   if (requested < 1)
   {
@@ -37,7 +41,7 @@ int ClampedHarmonics(int requested, int usable, const Monitor& monitor, BasisRes
     return requested;
   }
   Report({ "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
-           std::to_string(usable) + ", the number of points triangles use." },
+           std::to_string(usable) + ", the number of points " + what + "." },
     monitor,
     result);
   return usable;
@@ -52,7 +56,8 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
     m,
     options.Solver.BandSize,
     options.EigenvaluesOnly ? 0 : options.BytesPerValue,
-    !options.EigenvaluesOnly);
+    !options.EigenvaluesOnly,
+    mesh.IsVolume());
   const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
   if (available != 0 && need.Total() > available)
   {
@@ -288,23 +293,33 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   {
     throw InvalidInput(prepared.SmallComponents > 0
         ? "every connected component is smaller than MinimumComponentSize"
-        : "every triangle of the input is degenerate (zero area)");
+        : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
+                          : "every triangle of the input is degenerate (zero area)");
   }
   const bool window = options.UpperFrequency > 0.0;
-  int m = window
-    ? 0
-    : ClampedHarmonics(options.NumberOfHarmonics, static_cast<int>(used), monitor, result);
+  int m = window ? 0
+                 : ClampedHarmonics(options.NumberOfHarmonics,
+                     static_cast<int>(used),
+                     prepared.Volume ? "tetrahedra use" : "triangles use",
+                     monitor,
+                     result);
   if (options.CheckMemory && !window)
   {
     CheckMemory(mesh, used, m, options);
   }
 
-  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the harmonics
-  // (M-normalized, M an area) as 1 / s, the mass as s^2.
+  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an area
+  // or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
   const double s = UnitScale(prepared.Mesh.Vertices);
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);
+  result.BoundaryPoints = ops.BoundaryPoints;
+  if (!window && ops.Stiffness.rows() < m)
+  {
+    m = ClampedHarmonics(
+      m, static_cast<int>(ops.Stiffness.rows()), "inside the boundary", monitor, result);
+  }
   std::pair<int, int> pairs(0, m);
   if (window)
   {
@@ -316,7 +331,11 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     }
   }
   result.Components = ops.Components.Count;
-  ReportComponents(result.Components, m, monitor, result);
+  result.ConstantHarmonics = ops.ConstantHarmonics;
+  if (ops.ConstantHarmonics)
+  {
+    ReportComponents(result.Components, m, monitor, result);
+  }
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
   monitor.Report(0.1);
   monitor.ThrowIfCancelled();
@@ -356,11 +375,15 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
       ops.Components.Count,
       m,
       solve,
-      monitor.Scaled(0.1, 1.0));
+      monitor.Scaled(0.1, 1.0),
+      ops.ConstantHarmonics);
   }
+  // The mass is an area (a volume) and scales as s^d, d = 2 (3); M-normalized harmonics as
+  // s^(-d/2).
+  const double d = prepared.Volume ? 3.0 : 2.0;
   result.Pairs.Eigenvalues /= s * s;
-  result.Pairs.Eigenvectors /= s;
-  result.LumpedMass = ops.LumpedMass * (s * s);
+  result.Pairs.Eigenvectors /= std::pow(s, 0.5 * d);
+  result.LumpedMass = ops.LumpedMass * std::pow(s, d);
   result.InputPointIds = std::move(ops.InputPointIds);
   if (window && result.FirstIndex != pairs.first)
   {

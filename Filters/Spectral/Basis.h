@@ -82,8 +82,14 @@ struct BasisResult
   /// For each row of Pairs.Eigenvectors and LumpedMass, the input point it belongs to; the
   /// input points not listed have zero harmonics and mass.
   std::vector<int> InputPointIds;
-  /// Number of connected components (one zero eigenvalue each).
+  /// Number of connected components (one zero eigenvalue each with ConstantHarmonics; with
+  /// Dirichlet conditions, the components of the interior points).
   int Components = 0;
+  /// Whether each component has a constant harmonic of eigenvalue 0 (Neumann conditions, or
+  /// Dirichlet conditions on a closed surface, which has no boundary).
+  bool ConstantHarmonics = true;
+  /// Boundary points eliminated by Dirichlet conditions: their harmonics and mass are 0.
+  int BoundaryPoints = 0;
   /// With a frequency window: the number of eigenvalues below its lower end (the index of the
   /// first returned pair among all); otherwise 0.
   int FirstIndex = 0;
@@ -107,13 +113,15 @@ public:
 };
 
 /**
- * The m smallest eigenpairs of the Laplacian of a triangle mesh.
- * \param mesh Points and triangles (any; what cannot be used is left out with a warning).
+ * The m smallest eigenpairs of the Laplacian of a triangle or tetrahedral mesh.
+ * \param mesh Points and triangles, or points and tetrahedra (any; what cannot be used is left
+ *        out with a warning).
  * \param options m, operators, solver settings, memory check.
  * \param monitor Progress in [0, 1] (0.1 at the end of the assembly), cancellation, the names
  *        of the steps ("Assemble", "Eigensolve") and warnings as soon as they are known.
  * \throws InvalidInput for an index out of range, a non-finite coordinate on a used point, a
- *         mesh whose triangles are all degenerate, NumberOfHarmonics below 1, or a frequency
+ *         mesh whose cells are all degenerate, a mesh with both triangles and tetrahedra, a
+ *         Dirichlet condition with no interior point, NumberOfHarmonics below 1, or a frequency
  *         window that is empty or holds no eigenvalue.
  * \throws InsufficientMemory if the estimate exceeds the available memory.
  * \throws SolverFailure if no verified basis can be had (see SmallestEigenpairs).

@@ -417,6 +417,89 @@ inline TriangleMesh WithScanDefects(const TriangleMesh& input, const ScanDefects
   }
   return mesh;
 }
+
+/**
+ * The box [0, a] x [0, b] x [0, c] of nx by ny by nz cubes, each split into the six tetrahedra
+ * of its main diagonal (Kuhn's split: one for each order of the three axes along the path from
+ * the cube's low corner to its high corner), so neighbouring cubes share their faces' diagonals
+ * (a conforming mesh). Half of the tetrahedra are positively oriented, half negatively. Point
+ * (i, j, k) is (k (ny + 1) + j) (nx + 1) + i.
+ */
+inline TriangleMesh TetrahedralBox(double a, double b, double c, int nx, int ny, int nz)
+{
+  TriangleMesh mesh;
+  const auto id = [nx, ny](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  mesh.Vertices.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
+  for (int k = 0; k <= nz; ++k)
+  {
+    for (int j = 0; j <= ny; ++j)
+    {
+      for (int i = 0; i <= nx; ++i)
+      {
+        mesh.Vertices.row(id(i, j, k)) << a * i / nx, b * j / ny, c * k / nz;
+      }
+    }
+  }
+  const int orders[6][3] = {
+    { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 2, 1, 0 }
+  };
+  mesh.Tets.resize(6 * nx * ny * nz, 4);
+  int t = 0;
+  for (int k = 0; k < nz; ++k)
+  {
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        for (const auto& order : orders)
+        {
+          int step[3] = { i, j, k };
+          mesh.Tets(t, 0) = id(step[0], step[1], step[2]);
+          for (int s = 0; s < 3; ++s)
+          {
+            ++step[order[s]];
+            mesh.Tets(t, s + 1) = id(step[0], step[1], step[2]);
+          }
+          ++t;
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+/// Scales p by |p|_inf / |p|_2: the cube [-1, 1]^d onto the unit ball (or the square onto the
+/// unit disc), radially.
+inline void CubeToBall(Points& points)
+{
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+  {
+    const double norm = points.row(i).norm();
+    if (norm > 0.0)
+    {
+      points.row(i) *= points.row(i).cwiseAbs().maxCoeff() / norm;
+    }
+  }
+}
+
+/// The unit ball: TetrahedralBox of the cube [-1, 1]^3 (n cubes a side) mapped radially.
+inline TriangleMesh TetrahedralBall(int n)
+{
+  TriangleMesh mesh = TetrahedralBox(2.0, 2.0, 2.0, n, n, n);
+  mesh.Vertices.array() -= 1.0;
+  CubeToBall(mesh.Vertices);
+  return mesh;
+}
+
+/// The unit disc in the z = 0 plane: Rectangle of the square [-1, 1]^2 (n cells a side)
+/// mapped radially.
+inline TriangleMesh Disc(int n)
+{
+  TriangleMesh mesh = Rectangle(2.0, 2.0, n, n);
+  mesh.Vertices.leftCols(2).array() -= 1.0;
+  CubeToBall(mesh.Vertices);
+  return mesh;
+}
 } // namespace testing
 } // namespace spectral
 

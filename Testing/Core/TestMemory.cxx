@@ -34,6 +34,12 @@ void EstimateFormula()
     "Krylov workspace: n (3 k + 100) 8");
   CheckNear(static_cast<double>(d.Factor), 1e6 * 80 * 12.0, 0.0, "sparse factor: n 80 12");
   CheckNear(static_cast<double>(d.Total() - f.Total()), 4e9, 0.0, "float saves n m 4");
+  // A volume of 1M points: the factor fills 11 n^(1/3) = 1100 entries a row.
+  const MemoryEstimate v = EstimateBasisMemory(1000000, 1000000, 1000, 0, 8, true, true);
+  CheckNear(static_cast<double>(v.Factor),
+    1e6 * 1100 * 12.0,
+    1e-6 * 1.32e10,
+    "volume factor: n 11 n^(1/3) 12");
 
   // Unused points count in the output basis only.
   const MemoryEstimate partial = EstimateBasisMemory(1000, 600, 10, 20, 8);

@@ -2,10 +2,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Mesh.h
- * @brief Types shared by the spectral core: the triangle mesh and the matrix aliases.
+ * @brief Types shared by the spectral core: the mesh (triangles or tetrahedra) and the matrix
+ *        aliases.
  *
  * The core (namespace spectral) is plain C++17 on Eigen, Spectra and CHOLMOD. It never includes a
- * VTK header; vtkManifoldHarmonicBasis converts a vtkPolyData into a TriangleMesh.
+ * VTK header; vtkManifoldHarmonicBasis converts any vtkPointSet into a TriangleMesh (the
+ * surface's triangles, or the volume's tetrahedra).
  */
 #ifndef spectral_Mesh_h
 #define spectral_Mesh_h
@@ -29,11 +31,22 @@ using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// #F by 3 point indices, one triangle a row.
 using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-/// A triangle soup: points and triangles indexing them. No connectivity is assumed.
+/// #T by 4 point indices, one tetrahedron a row (either orientation).
+using Tetrahedra = Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor>;
+
+/**
+ * A triangle soup (a surface) or a tetrahedron soup (a volume): points, and triangles or
+ * tetrahedra indexing them. No connectivity is assumed. A mesh holds triangles or tetrahedra,
+ * not both (PrepareMesh refuses a mix): a surface has the operators of the Laplace-Beltrami
+ * operator, a volume those of the Laplacian of the solid (Operators/Operators.h).
+ */
 struct TriangleMesh
 {
   Points Vertices;
   Triangles Faces;
+  Tetrahedra Tets;
+  /// Whether this is a volume (it has tetrahedra).
+  bool IsVolume() const { return this->Tets.rows() > 0; }
 };
 
 /// Thrown when the input cannot be processed (bad indices, NaN coordinates, too many eigenpairs).

@@ -441,10 +441,10 @@ double NyquistFrequency(double edgeLengthSum, double edgeCount)
 //------------------------------------------------------------------------------
 double NyquistFrequency(const TriangleMesh& mesh)
 {
-  const double edges = 3.0 * static_cast<double>(mesh.Faces.rows());
+  const double edges = EdgeCount(mesh);
   const double nyquist = NyquistFrequency(MeanEdgeLength(mesh) * edges, edges);
   Require(nyquist > 0.0,
-    "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
+    "the Nyquist frequency needs a mesh with cells of non-zero, finite edge length");
   return nyquist;
 }
 

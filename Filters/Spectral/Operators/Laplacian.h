@@ -4,8 +4,9 @@
  * @file Laplacian.h
  * @brief The discrete operators of a mesh, whatever its kind, behind one interface.
  *
- * Every kind of mesh (today triangle surfaces, with the extrinsic cotangent or the intrinsic
- * Delaunay Laplacian) is turned into the same DiscreteLaplacian: the stiffness Q, the mass of
+ * Every kind of mesh (triangle surfaces, with the extrinsic cotangent or the intrinsic Delaunay
+ * Laplacian, and tetrahedral volumes, with the P1 cotangent Laplacian) is turned into the same
+ * DiscreteLaplacian: the stiffness Q, the mass of
  * the eigenproblem Q h = lambda M h, the lumped mass that the transform weighs by, the map from
  * the operators' rows to the input's points, and what was left out and why. The solvers
  * (Solver/EigenSolver.h) and the entry point (Basis.h) only see this structure.
@@ -27,10 +28,24 @@ namespace spectral
 /// The discretization of the Laplace-Beltrami operator of a triangle mesh.
 enum class LaplacianKind
 {
-  /// Cotangent weights of the input triangles (Operators.h).
+  /// Cotangent weights of the input triangles or tetrahedra (Operators.h).
   Cotangent,
-  /// Cotangent weights of the intrinsic Delaunay triangulation (IntrinsicDelaunay.h).
+  /// Cotangent weights of the intrinsic Delaunay triangulation (IntrinsicDelaunay.h). For
+  /// triangles only: a volume uses Cotangent instead, with a warning.
   IntrinsicDelaunay
+};
+
+/// The condition the harmonics satisfy on the boundary of the mesh.
+enum class BoundaryCondition
+{
+  /// The natural condition: zero normal derivative. Each connected component has a constant
+  /// harmonic of eigenvalue 0.
+  Neumann,
+  /// The harmonics vanish on the boundary (BoundaryPoints in Operators.h): the boundary points
+  /// are eliminated from the operators, so they have zero harmonics and mass, and no
+  /// eigenvalue is zero. A mesh without boundary (a closed surface) keeps Neumann, with a
+  /// warning.
+  Dirichlet
 };
 
 /// The mass matrix M of the eigenproblem.
@@ -47,6 +62,7 @@ struct LaplacianOptions
 {
   LaplacianKind Laplacian = LaplacianKind::Cotangent;
   MassKind Mass = MassKind::Lumped;
+  BoundaryCondition Boundary = BoundaryCondition::Neumann;
 };
 
 /// The operators of a mesh: what every solver takes, and what the output needs to map back.
@@ -60,8 +76,13 @@ struct DiscreteLaplacian
   Vector LumpedMass;
   /// For each row of the operators, the input point it belongs to.
   std::vector<int> InputPointIds;
-  /// The connected component of each row (one zero eigenvalue each).
+  /// The connected component of each row (one zero eigenvalue each with ConstantHarmonics).
   ComponentLabels Components;
+  /// Whether the first eigenvalue of each component is the 0 of its constant harmonic: true for
+  /// Neumann conditions, false once Dirichlet conditions eliminated boundary points.
+  bool ConstantHarmonics = true;
+  /// Points eliminated by Dirichlet conditions (not among InputPointIds).
+  int BoundaryPoints = 0;
   /// Bounding-box diagonal of the used points: the scale of the lowest frequencies.
   double Diameter = 0.0;
   /// What was left out or could not be repaired, one sentence each, for the user.
@@ -69,11 +90,13 @@ struct DiscreteLaplacian
 };
 
 /**
- * The operators of the part of a prepared mesh that has triangles (see PrepareMesh).
- * \param prepared The output of PrepareMesh: its rows are the operators' rows.
- * \param options Laplacian and mass.
+ * The operators of the part of a prepared mesh that has cells (see PrepareMesh).
+ * \param prepared The output of PrepareMesh: its rows are the operators' rows, except the
+ *        boundary points that Dirichlet conditions eliminate.
+ * \param options Laplacian, mass and boundary condition.
  * \param monitor Cancellation of the intrinsic Delaunay flips; no progress is reported.
  * \throws Cancelled if the monitor says so.
+ * \throws InvalidInput if Dirichlet conditions leave no interior point.
  */
 DiscreteLaplacian AssembleLaplacian(const PreparedMesh& prepared,
   const LaplacianOptions& options,

@@ -3,6 +3,7 @@
 #include "Operators/Operators.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,11 @@ Point Corner(const TriangleMesh& mesh, int f, int c)
   return mesh.Vertices.row(mesh.Faces(f, c)).transpose();
 }
 
+Point TetCorner(const TriangleMesh& mesh, int t, int c)
+{
+  return mesh.Vertices.row(mesh.Tets(t, c)).transpose();
+}
+
 /// Twice the area of triangle f.
 double DoubleArea(const TriangleMesh& mesh, int f)
 {
@@ -29,27 +35,75 @@ double DoubleArea(const TriangleMesh& mesh, int f)
   return (Corner(mesh, f, 1) - a).cross(Corner(mesh, f, 2) - a).norm();
 }
 
+/// Six times the unsigned volume of tetrahedron t.
+double SixVolume(const TriangleMesh& mesh, int t)
+{
+  const Point a = TetCorner(mesh, t, 0);
+  return std::abs(
+    (TetCorner(mesh, t, 1) - a).dot((TetCorner(mesh, t, 2) - a).cross(TetCorner(mesh, t, 3) - a)));
+}
+
+/// The longest edge squared of the K corners `p`.
+template<int K>
+double LongestEdgeSquared(const std::array<Point, K>& p)
+{
+  double longest = 0.0;
+  for (int i = 0; i < K; ++i)
+  {
+    for (int j = i + 1; j < K; ++j)
+    {
+      longest = std::max(longest, (p[i] - p[j]).squaredNorm());
+    }
+  }
+  return longest;
+}
+
 bool IsDegenerate(const TriangleMesh& mesh, int f)
 {
-  const Point a = Corner(mesh, f, 0);
-  const Point b = Corner(mesh, f, 1);
-  const Point c = Corner(mesh, f, 2);
-  const double longest =
-    std::max({ (b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm() });
-  const double doubleArea = (b - a).cross(c - a).norm();
-  return !(doubleArea > 1e-12 * longest);
+  const std::array<Point, 3> p = { Corner(mesh, f, 0), Corner(mesh, f, 1), Corner(mesh, f, 2) };
+  return !(DoubleArea(mesh, f) > DegenerateCellSize * LongestEdgeSquared<3>(p));
 }
+
+bool IsDegenerateTet(const TriangleMesh& mesh, int t)
+{
+  const std::array<Point, 4> p = {
+    TetCorner(mesh, t, 0), TetCorner(mesh, t, 1), TetCorner(mesh, t, 2), TetCorner(mesh, t, 3)
+  };
+  const double longest = LongestEdgeSquared<4>(p);
+  return !(SixVolume(mesh, t) > DegenerateCellSize * longest * std::sqrt(longest));
+}
+
+/// The cells of a mesh with K corners: its triangles (K = 3) or tetrahedra (K = 4).
+template<int K>
+struct CellsOf;
+template<>
+struct CellsOf<3>
+{
+  static const Triangles& Get(const TriangleMesh& mesh) { return mesh.Faces; }
+  static Triangles& Get(TriangleMesh& mesh) { return mesh.Faces; }
+  static bool Degenerate(const TriangleMesh& mesh, int f) { return IsDegenerate(mesh, f); }
+  static constexpr const char* Name = "triangle";
+};
+template<>
+struct CellsOf<4>
+{
+  static const Tetrahedra& Get(const TriangleMesh& mesh) { return mesh.Tets; }
+  static Tetrahedra& Get(TriangleMesh& mesh) { return mesh.Tets; }
+  static bool Degenerate(const TriangleMesh& mesh, int t) { return IsDegenerateTet(mesh, t); }
+  static constexpr const char* Name = "tetrahedron";
+};
 
 /// Largest coordinate magnitude PrepareMesh accepts: squared areas (edge lengths to the fourth
 /// power) stay finite below it.
 constexpr double MaxCoordinate = 1e75;
 
 /**
- * Keeps the first of triangles with the same three corners (either orientation): `corners`
- * holds the sorted corners of each triangle of `kept`, in the same order; both are reduced to
- * the triangles kept, in their input order, and `duplicates` counts the others.
+ * Keeps the first of cells with the same K corners (either orientation): `corners` holds the
+ * sorted corners of each cell of `kept`, in the same order; both are reduced to the cells kept,
+ * in their input order, and `duplicates` counts the others.
  */
-void LeaveOutDuplicates(std::vector<std::array<int, 3>>& corners,
+template<int K>
+void LeaveOutDuplicates(std::vector<std::array<int, K>>& corners,
   std::vector<int>& kept,
   int& duplicates)
 {
@@ -63,7 +117,7 @@ void LeaveOutDuplicates(std::vector<std::array<int, 3>>& corners,
   {
     if (corners[order[i]] == corners[order[i - 1]])
     {
-      keep[order[i]] = 0; // stable: the earlier input triangle stays
+      keep[order[i]] = 0; // stable: the earlier input cell stays
       ++duplicates;
     }
   }
@@ -89,22 +143,43 @@ int Root(std::vector<int>& parent, int i)
   }
   return i;
 }
-} // namespace
+
+/// Labels from a union-find forest: components numbered in the order of their first points.
+ComponentLabels Labels(std::vector<int>& parent)
+{
+  const int n = static_cast<int>(parent.size());
+  ComponentLabels out;
+  out.Label.assign(static_cast<std::size_t>(n), -1);
+  std::vector<int> labelOfRoot(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i)
+  {
+    int& label = labelOfRoot[static_cast<std::size_t>(Root(parent, i))];
+    if (label < 0)
+    {
+      label = out.Count++;
+    }
+    out.Label[static_cast<std::size_t>(i)] = label;
+  }
+  return out;
+}
 
 //------------------------------------------------------------------------------
-PreparedMesh PrepareMesh(const TriangleMesh& input)
+// Checks the indices and the coordinates of the points that the cells use.
+template<int K>
+void CheckCells(const TriangleMesh& input)
 {
+  const auto& cells = CellsOf<K>::Get(input);
   const int numPts = static_cast<int>(input.Vertices.rows());
-  const int numTris = static_cast<int>(input.Faces.rows());
-  for (int f = 0; f < numTris; ++f)
+  for (int f = 0; f < static_cast<int>(cells.rows()); ++f)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < K; ++c)
     {
-      const int id = input.Faces(f, c);
+      const int id = cells(f, c);
       if (id < 0 || id >= numPts)
       {
-        throw InvalidInput("triangle " + std::to_string(f) + " refers to point " +
-          std::to_string(id) + " but the mesh has " + std::to_string(numPts) + " points");
+        throw InvalidInput(std::string(CellsOf<K>::Name) + " " + std::to_string(f) +
+          " refers to point " + std::to_string(id) + " but the mesh has " + std::to_string(numPts) +
+          " points");
       }
       if (!input.Vertices.row(id).allFinite())
       {
@@ -121,38 +196,72 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
       }
     }
   }
+}
 
-  PreparedMesh out;
-  std::vector<int> compact(numPts, -1);
-  std::vector<int> kept;
-  kept.reserve(numTris);
-  std::vector<std::array<int, 3>> seen; // sorted corners of the kept triangles
-  seen.reserve(numTris);
-  for (int f = 0; f < numTris; ++f)
+//------------------------------------------------------------------------------
+// The cells `kept` of `cells` with their points renumbered by `compact`, into `mesh`.
+template<int K, typename Cells>
+void CopyCells(const Cells& cells,
+  const std::vector<int>& kept,
+  const std::vector<int>& compact,
+  TriangleMesh& mesh)
+{
+  auto& out = CellsOf<K>::Get(mesh);
+  out.resize(static_cast<Eigen::Index>(kept.size()), K);
+  for (std::size_t t = 0; t < kept.size(); ++t)
   {
-    if (IsDegenerate(input, f))
+    for (int c = 0; c < K; ++c)
+    {
+      out(static_cast<Eigen::Index>(t), c) = compact[static_cast<std::size_t>(cells(kept[t], c))];
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// PrepareMesh for the cells with K corners.
+template<int K>
+PreparedMesh PrepareCells(const TriangleMesh& input)
+{
+  CheckCells<K>(input);
+  const auto& cells = CellsOf<K>::Get(input);
+  const int numPts = static_cast<int>(input.Vertices.rows());
+  const int numCells = static_cast<int>(cells.rows());
+  PreparedMesh out;
+  out.Volume = K == 4;
+  std::vector<int> compact(static_cast<std::size_t>(numPts), -1);
+  std::vector<int> kept;
+  kept.reserve(static_cast<std::size_t>(numCells));
+  std::vector<std::array<int, K>> seen; // sorted corners of the kept cells
+  seen.reserve(static_cast<std::size_t>(numCells));
+  for (int f = 0; f < numCells; ++f)
+  {
+    if (CellsOf<K>::Degenerate(input, f))
     {
       ++out.DegenerateTriangles;
       continue;
     }
-    std::array<int, 3> corners = { input.Faces(f, 0), input.Faces(f, 1), input.Faces(f, 2) };
+    std::array<int, K> corners;
+    for (int c = 0; c < K; ++c)
+    {
+      corners[static_cast<std::size_t>(c)] = cells(f, c);
+    }
     std::sort(corners.begin(), corners.end());
     seen.push_back(corners);
     kept.push_back(f);
   }
-  LeaveOutDuplicates(seen, kept, out.DuplicateTriangles);
+  LeaveOutDuplicates<K>(seen, kept, out.DuplicateTriangles);
   for (int f : kept)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < K; ++c)
     {
-      compact[input.Faces(f, c)] = 0;
+      compact[static_cast<std::size_t>(cells(f, c))] = 0;
     }
   }
   for (int i = 0; i < numPts; ++i)
   {
-    if (compact[i] == 0)
+    if (compact[static_cast<std::size_t>(i)] == 0)
     {
-      compact[i] = static_cast<int>(out.InputPointIds.size());
+      compact[static_cast<std::size_t>(i)] = static_cast<int>(out.InputPointIds.size());
       out.InputPointIds.push_back(i);
     }
   }
@@ -163,20 +272,79 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
   {
     out.Mesh.Vertices.row(static_cast<Eigen::Index>(i)) = input.Vertices.row(out.InputPointIds[i]);
   }
-  out.Mesh.Faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t t = 0; t < kept.size(); ++t)
+  CopyCells<K>(cells, kept, compact, out.Mesh);
+  return out;
+}
+
+//------------------------------------------------------------------------------
+// The cells of `prepared` whose points `compact` keeps (>= 0), renumbered.
+template<int K>
+void KeepCells(const PreparedMesh& prepared, const std::vector<int>& compact, PreparedMesh& out)
+{
+  const auto& cells = CellsOf<K>::Get(prepared.Mesh);
+  std::vector<int> kept;
+  for (Eigen::Index f = 0; f < cells.rows(); ++f)
   {
-    for (int c = 0; c < 3; ++c)
+    if (compact[static_cast<std::size_t>(cells(f, 0))] >= 0)
     {
-      out.Mesh.Faces(static_cast<Eigen::Index>(t), c) = compact[input.Faces(kept[t], c)];
+      kept.push_back(static_cast<int>(f));
     }
   }
-  return out;
+  CopyCells<K>(cells, kept, compact, out.Mesh);
+}
+
+//------------------------------------------------------------------------------
+// The P1 stiffness of the tetrahedra: |T| G G^T with G the 4 by 3 gradients of the hat
+// functions (rows of the inverse edge matrix; the first is minus their sum).
+SparseMatrix TetStiffness(const TriangleMesh& mesh)
+{
+  TriangleAssembly assembly(mesh.Vertices.rows(), mesh.Tets.rows(), 24);
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    if (IsDegenerateTet(mesh, t))
+    {
+      continue;
+    }
+    const Point a = TetCorner(mesh, t, 0);
+    Eigen::Matrix3d edges;
+    edges << TetCorner(mesh, t, 1) - a, TetCorner(mesh, t, 2) - a, TetCorner(mesh, t, 3) - a;
+    const Eigen::Matrix3d inverse = edges.inverse();
+    Eigen::Matrix<double, 4, 3> G;
+    G.bottomRows<3>() = inverse;
+    G.row(0) = -inverse.colwise().sum();
+    const double volume = std::abs(edges.determinant()) / 6.0;
+    const Eigen::Matrix4d K = volume * G * G.transpose();
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = i + 1; j < 4; ++j)
+      {
+        assembly.AddEdgeWeight(mesh.Tets(t, i), mesh.Tets(t, j), -K(i, j));
+      }
+    }
+  }
+  return assembly.Matrix();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+PreparedMesh PrepareMesh(const TriangleMesh& input)
+{
+  if (input.Faces.rows() > 0 && input.Tets.rows() > 0)
+  {
+    throw InvalidInput("the mesh has " + std::to_string(input.Faces.rows()) + " triangles and " +
+      std::to_string(input.Tets.rows()) +
+      " tetrahedra: a mesh is a surface or a volume, not both; extract one of them first");
+  }
+  return input.IsVolume() ? PrepareCells<4>(input) : PrepareCells<3>(input);
 }
 
 //------------------------------------------------------------------------------
 SparseMatrix CotanStiffness(const TriangleMesh& mesh)
 {
+  if (mesh.IsVolume())
+  {
+    return TetStiffness(mesh);
+  }
   TriangleAssembly assembly(mesh.Vertices.rows(), mesh.Faces.rows(), 12);
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
@@ -210,17 +378,31 @@ Vector LumpedMass(const TriangleMesh& mesh)
       d[mesh.Faces(f, c)] += third;
     }
   }
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    const double quarter = SixVolume(mesh, t) / 24.0;
+    for (int c = 0; c < 4; ++c)
+    {
+      d[mesh.Tets(t, c)] += quarter;
+    }
+  }
   return d;
 }
 
 //------------------------------------------------------------------------------
 SparseMatrix ConsistentMass(const TriangleMesh& mesh)
 {
-  TriangleAssembly assembly(mesh.Vertices.rows(), mesh.Faces.rows(), 9);
+  TriangleAssembly assembly(
+    mesh.Vertices.rows(), mesh.Faces.rows() + 2 * mesh.Tets.rows(), mesh.IsVolume() ? 8 : 9);
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
     assembly.AddMassBlock(
       mesh.Faces(f, 0), mesh.Faces(f, 1), mesh.Faces(f, 2), 0.5 * DoubleArea(mesh, f));
+  }
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    const int corners[4] = { mesh.Tets(t, 0), mesh.Tets(t, 1), mesh.Tets(t, 2), mesh.Tets(t, 3) };
+    assembly.AddMassBlock(corners, SixVolume(mesh, t) / 6.0);
   }
   return assembly.Matrix();
 }
@@ -254,6 +436,19 @@ void TriangleAssembly::AddMassBlock(int a, int b, int c, double area)
     for (int q = 0; q < 3; ++q)
     {
       this->Triplets.emplace_back(corners[r], corners[q], area * (r == q ? 1.0 / 6.0 : 1.0 / 12.0));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void TriangleAssembly::AddMassBlock(const int (&corners)[4], double volume)
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int q = 0; q < 4; ++q)
+    {
+      this->Triplets.emplace_back(
+        corners[r], corners[q], volume * (r == q ? 1.0 / 10.0 : 1.0 / 20.0));
     }
   }
 }
@@ -302,10 +497,75 @@ double BoundingBoxDiagonal(const Points& points)
 }
 
 //------------------------------------------------------------------------------
+double Measure(const TriangleMesh& mesh)
+{
+  if (!mesh.IsVolume())
+  {
+    return SurfaceArea(mesh);
+  }
+  double volume = 0.0;
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    volume += SixVolume(mesh, t) / 6.0;
+  }
+  return volume;
+}
+
+//------------------------------------------------------------------------------
+std::vector<char> BoundaryPoints(const TriangleMesh& mesh)
+{
+  // The sorted corners of every facet (edge of a triangle, face of a tetrahedron), padded with
+  // -1 for edges; a facet that appears once is on the boundary.
+  std::vector<std::array<int, 3>> facets;
+  for (int f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int i = mesh.Faces(f, c);
+      const int j = mesh.Faces(f, (c + 1) % 3);
+      facets.push_back({ -1, std::min(i, j), std::max(i, j) });
+    }
+  }
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      std::array<int, 3> face = {
+        mesh.Tets(t, (c + 1) % 4), mesh.Tets(t, (c + 2) % 4), mesh.Tets(t, (c + 3) % 4)
+      };
+      std::sort(face.begin(), face.end());
+      facets.push_back(face);
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  std::vector<char> boundary(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
+  for (std::size_t i = 0; i < facets.size();)
+  {
+    std::size_t end = i + 1;
+    while (end < facets.size() && facets[end] == facets[i])
+    {
+      ++end;
+    }
+    if (end - i == 1)
+    {
+      for (int id : facets[i])
+      {
+        if (id >= 0)
+        {
+          boundary[static_cast<std::size_t>(id)] = 1;
+        }
+      }
+    }
+    i = end;
+  }
+  return boundary;
+}
+
+//------------------------------------------------------------------------------
 ComponentLabels LabelComponents(const TriangleMesh& mesh)
 {
   const int n = static_cast<int>(mesh.Vertices.rows());
-  std::vector<int> parent(n);
+  std::vector<int> parent(static_cast<std::size_t>(n));
   std::iota(parent.begin(), parent.end(), 0);
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
@@ -313,19 +573,29 @@ ComponentLabels LabelComponents(const TriangleMesh& mesh)
     parent[Root(parent, mesh.Faces(f, 1))] = r0;
     parent[Root(parent, mesh.Faces(f, 2))] = r0;
   }
-  ComponentLabels out;
-  out.Label.assign(static_cast<std::size_t>(n), -1);
-  std::vector<int> labelOfRoot(static_cast<std::size_t>(n), -1);
-  for (int i = 0; i < n; ++i)
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
   {
-    int& label = labelOfRoot[static_cast<std::size_t>(Root(parent, i))];
-    if (label < 0)
+    for (int c = 1; c < 4; ++c)
     {
-      label = out.Count++;
+      parent[Root(parent, mesh.Tets(t, c))] = Root(parent, mesh.Tets(t, 0));
     }
-    out.Label[static_cast<std::size_t>(i)] = label;
   }
-  return out;
+  return Labels(parent);
+}
+
+//------------------------------------------------------------------------------
+ComponentLabels LabelComponents(const SparseMatrix& pattern)
+{
+  std::vector<int> parent(static_cast<std::size_t>(pattern.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int j = 0; j < pattern.outerSize(); ++j)
+  {
+    for (SparseMatrix::InnerIterator it(pattern, j); it; ++it)
+    {
+      parent[Root(parent, static_cast<int>(it.row()))] = Root(parent, j);
+    }
+  }
+  return Labels(parent);
 }
 
 //------------------------------------------------------------------------------
@@ -368,23 +638,8 @@ PreparedMesh LeaveOutSmallComponents(const PreparedMesh& prepared, int minimumPo
       out.Mesh.Vertices.row(compact[static_cast<std::size_t>(i)]) = prepared.Mesh.Vertices.row(i);
     }
   }
-  std::vector<int> faces;
-  for (Eigen::Index f = 0; f < prepared.Mesh.Faces.rows(); ++f)
-  {
-    if (compact[static_cast<std::size_t>(prepared.Mesh.Faces(f, 0))] >= 0)
-    {
-      faces.push_back(static_cast<int>(f));
-    }
-  }
-  out.Mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t t = 0; t < faces.size(); ++t)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      out.Mesh.Faces(static_cast<Eigen::Index>(t), c) =
-        compact[static_cast<std::size_t>(prepared.Mesh.Faces(faces[t], c))];
-    }
-  }
+  KeepCells<3>(prepared, compact, out);
+  KeepCells<4>(prepared, compact, out);
   return out;
 }
 
@@ -397,7 +652,8 @@ int ConnectedComponents(const TriangleMesh& mesh)
 //------------------------------------------------------------------------------
 double MeanEdgeLength(const TriangleMesh& mesh)
 {
-  if (mesh.Faces.rows() == 0)
+  const double edges = EdgeCount(mesh);
+  if (edges == 0.0)
   {
     return 0.0;
   }
@@ -409,6 +665,22 @@ double MeanEdgeLength(const TriangleMesh& mesh)
       sum += (Corner(mesh, f, (c + 1) % 3) - Corner(mesh, f, c)).norm();
     }
   }
-  return sum / (3.0 * static_cast<double>(mesh.Faces.rows()));
+  for (int t = 0; t < mesh.Tets.rows(); ++t)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = i + 1; j < 4; ++j)
+      {
+        sum += (TetCorner(mesh, t, j) - TetCorner(mesh, t, i)).norm();
+      }
+    }
+  }
+  return sum / edges;
+}
+
+//------------------------------------------------------------------------------
+double EdgeCount(const TriangleMesh& mesh)
+{
+  return 3.0 * static_cast<double>(mesh.Faces.rows()) + 6.0 * static_cast<double>(mesh.Tets.rows());
 }
 } // namespace spectral

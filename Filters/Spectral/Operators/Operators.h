@@ -2,11 +2,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Operators.h
- * @brief Discrete Laplace-Beltrami operators of a triangle mesh: cotan stiffness and mass.
+ * @brief Discrete Laplace operators of a triangle or tetrahedral mesh: cotan stiffness and mass.
  *
  * The generalized eigenproblem L h = lambda M h of these matrices defines the manifold harmonics
  * (B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics", Computer Graphics
- * Forum 27(2), 2008). Natural (Neumann) boundary conditions hold on open boundaries.
+ * Forum 27(2), 2008). On a surface they are the linear finite elements of the Laplace-Beltrami
+ * operator (cotangent weights); on a volume those of the Laplacian of the solid: the P1
+ * stiffness of each tetrahedron, |T| grad(phi_i) . grad(phi_j) with phi the hat functions
+ * (equivalently an edge weight l_kl cot(theta_kl) / 6 from the dihedral angle theta_kl at the
+ * opposite edge kl), and a quarter of its volume to each corner as lumped mass. Natural
+ * (Neumann) boundary conditions hold on open boundaries; Laplacian.h eliminates the boundary
+ * points for Dirichlet conditions.
  *
  * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestOperators.cxx.
  */
@@ -22,16 +28,19 @@ namespace spectral
 /// The part of a mesh that the operators are built on, and how it maps to the input.
 struct PreparedMesh
 {
-  /// Triangles of non-zero area, on the points they use, renumbered 0..#used-1.
+  /// Triangles of non-zero area (or tetrahedra of non-zero volume), on the points they use,
+  /// renumbered 0..#used-1.
   TriangleMesh Mesh;
+  /// Whether the input was a volume (tetrahedra), even if none of them remains.
+  bool Volume = false;
   /// For each point of Mesh, its index in the input mesh.
   std::vector<int> InputPointIds;
-  /// Input triangles left out because their area is numerically zero.
+  /// Input triangles (tetrahedra) left out because their area (volume) is numerically zero.
   int DegenerateTriangles = 0;
-  /// Input triangles left out because an earlier one has the same three points (either
+  /// Input triangles (tetrahedra) left out because an earlier one has the same points (either
   /// orientation): counted twice they would double the local stiffness and mass.
   int DuplicateTriangles = 0;
-  /// Input points that no remaining triangle uses (their harmonics are zero).
+  /// Input points that no remaining triangle (tetrahedron) uses (their harmonics are zero).
   int UnusedPoints = 0;
   /// Connected components left out by LeaveOutSmallComponents, and their points (which have
   /// zero harmonics, as unused points have).
@@ -40,16 +49,23 @@ struct PreparedMesh
 };
 
 /**
- * Keep the triangles with non-zero area, once each, and the points they use.
+ * Relative size below which a cell is degenerate: twice a triangle's area below it times its
+ * longest edge squared, six times a tetrahedron's volume below it times its longest edge cubed
+ * (zero-area or zero-volume cells, repeated points, collinear or coplanar corners).
+ */
+constexpr double DegenerateCellSize = 1e-12;
+
+/**
+ * Keep the triangles (tetrahedra) of non-zero area (volume), once each, and the points they use.
  *
- * A triangle is degenerate when twice its area is below 1e-12 times its longest edge squared
- * (zero-area triangles, repeated points, collinear corners). Degenerate triangles carry no
- * stiffness and no mass, so they are left out rather than turned into infinite cotangents.
+ * Degenerate cells (DegenerateCellSize) carry no stiffness and no mass, so they are left out
+ * rather than turned into infinite cotangents.
  *
- * \param input Points and triangles; indices must lie in [0, #V).
+ * \param input Points and triangles, or points and tetrahedra; indices must lie in [0, #V).
  * \return The compact mesh with the map back to input point ids.
- * \throws InvalidInput for an index out of range, or a non-finite coordinate or one of magnitude
- *         above 1e75 (where squared areas overflow) on a used point.
+ * \throws InvalidInput for an index out of range, a non-finite coordinate or one of magnitude
+ *         above 1e75 (where squared areas overflow) on a used point, or a mesh with both
+ *         triangles and tetrahedra.
  */
 PreparedMesh PrepareMesh(const TriangleMesh& input);
 
@@ -65,20 +81,24 @@ PreparedMesh LeaveOutSmallComponents(const PreparedMesh& prepared, int minimumPo
 /**
  * Cotangent stiffness matrix Q (#V by #V, sparse, symmetric, positive semi-definite).
  *
- * Q_ij = -(cot a_ij + cot b_ij) / 2 for an edge ij with opposite angles a_ij and b_ij
+ * Surface: Q_ij = -(cot a_ij + cot b_ij) / 2 for an edge ij with opposite angles a_ij and b_ij
  * (one angle on a boundary edge), Q_ii = -sum_j Q_ij, so Q 1 = 0. Cotangents come from edge
- * vectors (cot = u.v / |u x v|); degenerate triangles contribute nothing. The diagonal is stored
- * even where it is zero, so every Q has the pattern of the mesh graph plus the diagonal.
+ * vectors (cot = u.v / |u x v|). Volume: Q_ij = sum over the tetrahedra T with edge ij of
+ * |T| grad(phi_i) . grad(phi_j), the gradients from the inverse of the edge matrix and |T| the
+ * unsigned volume, so that either orientation gives the same Q. Degenerate cells contribute
+ * nothing. The diagonal is stored even where it is zero, so every Q has the pattern of the mesh
+ * graph plus the diagonal.
  */
 SparseMatrix CotanStiffness(const TriangleMesh& mesh);
 
-/// Lumped (barycentric) mass: D_ii = sum of |t|/3 over the triangles t around point i. Length #V.
+/// Lumped (barycentric) mass: D_ii = sum of |t|/3 over the triangles t around point i (of |T|/4
+/// over the tetrahedra T around it). Length #V.
 Vector LumpedMass(const TriangleMesh& mesh);
 
 /**
  * Consistent (Galerkin) mass matrix B (#V by #V, sparse, symmetric positive definite on used
- * points): B_ij = sum |t|/12 over triangles t with edge ij, B_ii = sum |t|/6 over t around i.
- * Its row sums equal LumpedMass.
+ * points): B_ij = sum |t|/12 over triangles t with edge ij, B_ii = sum |t|/6 over t around i
+ * (|T|/20 and |T|/10 for tetrahedra). Its row sums equal LumpedMass.
  */
 SparseMatrix ConsistentMass(const TriangleMesh& mesh);
 
@@ -97,6 +117,9 @@ public:
   void AddEdgeWeight(int i, int j, double w);
   /// Galerkin mass of a triangle of the given area: area/6 on its diagonal, area/12 off it.
   void AddMassBlock(int a, int b, int c, double area);
+  /// Galerkin mass of a tetrahedron of the given volume: volume/10 on its diagonal, volume/20
+  /// off it.
+  void AddMassBlock(const int (&corners)[4], double volume);
   /// The assembled matrix (duplicates summed), compressed.
   SparseMatrix Matrix() const;
 
@@ -114,6 +137,17 @@ double BoundingBoxDiagonal(const Points& points);
 /// Total area of the triangles.
 double SurfaceArea(const TriangleMesh& mesh);
 
+/// The measure of the mesh: the total volume of its tetrahedra (unsigned) for a volume, the area
+/// of its triangles otherwise.
+double Measure(const TriangleMesh& mesh);
+
+/**
+ * The points on the boundary of the mesh: those of the edges that one triangle alone uses, for
+ * a surface, or of the faces that one tetrahedron alone uses, for a volume (1 on the boundary,
+ * 0 elsewhere; length #V). A closed surface has none.
+ */
+std::vector<char> BoundaryPoints(const TriangleMesh& mesh);
+
 /// The connected component of each point (points joined by triangle edges).
 struct ComponentLabels
 {
@@ -123,13 +157,20 @@ struct ComponentLabels
   int Count = 0;
 };
 
-/// Label the connected components of a mesh.
+/// Label the connected components of a mesh (points joined by the edges of its cells).
 ComponentLabels LabelComponents(const TriangleMesh& mesh);
 
-/// Number of connected components (points joined by triangle edges; isolated points count too).
+/// Label the connected components of the graph of a sparse symmetric matrix (rows joined by
+/// their stored entries, explicit zeros included).
+ComponentLabels LabelComponents(const SparseMatrix& pattern);
+
+/// Number of connected components (points joined by cell edges; isolated points count too).
 int ConnectedComponents(const TriangleMesh& mesh);
 
-/// Mean edge length over all triangle edges (each interior edge counted twice). 0 for no triangles.
+/// The number of cell edges, each counted once per cell: 3 per triangle, 6 per tetrahedron.
+double EdgeCount(const TriangleMesh& mesh);
+
+/// Mean edge length over all cell edges (each edge counted once per cell). 0 for no cells.
 double MeanEdgeLength(const TriangleMesh& mesh);
 } // namespace spectral
 

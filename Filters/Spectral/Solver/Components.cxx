@@ -120,8 +120,8 @@ void Gather(const std::vector<Block>& blocks,
 }
 
 /**
- * A pair of the union, in the order of its sort key: the eigenvalue (exactly 0 for the first
- * pair of each component, its constant harmonic, whatever round-off the solver left), minus the
+ * A pair of the union, in the order of its sort key: the eigenvalue (with constant harmonics,
+ * exactly 0 for the first pair of each component, whatever round-off the solver left), minus the
  * size of the component for those (the largest components first), the component and the index
  * within its pairs.
  */
@@ -130,7 +130,7 @@ using Member = std::tuple<double, int, int, int>;
 //------------------------------------------------------------------------------
 // The m smallest pairs of the union, ascending; the zero eigenvalues of the largest components
 // first, other ties in component order.
-std::vector<Member> Smallest(const std::vector<Block>& blocks, int m)
+std::vector<Member> Smallest(const std::vector<Block>& blocks, int m, bool constant)
 {
   std::vector<Member> all;
   for (std::size_t c = 0; c < blocks.size(); ++c)
@@ -139,8 +139,9 @@ std::vector<Member> Smallest(const std::vector<Block>& blocks, int m)
     const int size = static_cast<int>(blocks[c].Rows.size());
     for (Eigen::Index k = 0; k < lambda.size(); ++k)
     {
+      const bool zero = constant && k == 0;
       all.emplace_back(
-        k == 0 ? 0.0 : lambda[k], k == 0 ? -size : 0, static_cast<int>(c), static_cast<int>(k));
+        zero ? 0.0 : lambda[k], zero ? -size : 0, static_cast<int>(c), static_cast<int>(k));
     }
   }
   std::sort(all.begin(), all.end());
@@ -167,7 +168,8 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   int count,
   int m,
   const PairSolver& solve,
-  const Monitor& monitor)
+  const Monitor& monitor,
+  bool constantHarmonics)
 {
   if (count <= 1)
   {
@@ -198,7 +200,7 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   for (bool again = true; again;)
   {
     again = false;
-    const std::vector<Member> smallest = Smallest(blocks, m);
+    const std::vector<Member> smallest = Smallest(blocks, m, constantHarmonics);
     const double threshold = smallest.size() < static_cast<std::size_t>(m)
       ? std::numeric_limits<double>::infinity()
       : std::get<0>(smallest.back());
@@ -216,7 +218,7 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
 
   // Which pairs: by the sort key. In what order: by the computed eigenvalues, ascending (the
   // zero eigenvalues of different components differ by round-off, in either direction).
-  std::vector<Member> smallest = Smallest(blocks, m);
+  std::vector<Member> smallest = Smallest(blocks, m, constantHarmonics);
   const auto value = [&blocks](const Member& member)
   {
     return blocks[static_cast<std::size_t>(std::get<2>(member))]

@@ -61,7 +61,9 @@ using PairSolver = std::function<EigenResult(const SparseMatrix& L,
  * \return Eigenvalues ascending, eigenvectors n by m, each zero outside its component; the
  *         statistics summed (MaxResidual and MaxBackwardError: the largest). The zero eigenvalues
  * (the first of each component) come first, the largest components' first, so that when m is below
- * the number of components the basis describes the largest ones.
+ * the number of components the basis describes the largest ones. \param constantHarmonics Whether
+ * the first pair of each component is its constant harmonic of eigenvalue 0 (Neumann conditions);
+ * false for Dirichlet conditions, where every pair is ordered by its eigenvalue alone.
  */
 EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -70,7 +72,8 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   int count,
   int m,
   const PairSolver& solve,
-  const Monitor& monitor = Monitor());
+  const Monitor& monitor = Monitor(),
+  bool constantHarmonics = true);
 
 /**
  * The eigenpairs with eigenvalues in [low, high) of block-diagonal operators, component by

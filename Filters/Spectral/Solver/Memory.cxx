@@ -3,6 +3,7 @@
 #include "Solver/Memory.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -38,7 +39,8 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   int m,
   int bandSize,
   int bytesPerValue,
-  bool keepEigenvectors)
+  bool keepEigenvectors,
+  bool volume)
 {
   const std::uint64_t harmonics = static_cast<std::uint64_t>(std::max(m, 0));
   const std::uint64_t band = static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize));
@@ -47,7 +49,9 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   estimate.Eigenvectors =
     nUsed * (keepEigenvectors ? harmonics : std::min(harmonics, 3 * band)) * 8;
   estimate.Krylov = nUsed * (3 * band + 100) * 8;
-  estimate.Factor = nUsed * 80 * 12;
+  const double perRow =
+    volume ? 11.0 * std::cbrt(static_cast<double>(nUsed)) : 80.0; // see Memory.h
+  estimate.Factor = static_cast<std::uint64_t>(static_cast<double>(nUsed) * perRow * 12.0);
   return estimate;
 }
 

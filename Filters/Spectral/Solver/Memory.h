@@ -18,7 +18,10 @@
  *                               block products and Ritz vectors
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
- *                               (an 8-byte value and a 4-byte row index)
+ *                               (an 8-byte value and a 4-byte row index); a volume's factor
+ *                               fills far more, and more with its size: 11 nUsed^(1/3) a row
+ *                               (401 measured on the 50,653-point tetrahedral ball of
+ *                               `bench/ManifoldHarmonicsBench --volume --case 50000:200`)
  *
  * with k = EffectiveBandSize(m, bandSize), the eigensolver's band size (the band policy is
  * documented once, in Bands.h; a band size set by hand above SingleBandSize(m) makes the
@@ -49,7 +52,7 @@ struct MemoryEstimate
   std::uint64_t Eigenvectors = 0;
   /// The Lanczos workspace of one band: nUsed (3 k + 100) doubles.
   std::uint64_t Krylov = 0;
-  /// The sparse factor: nUsed 80 (value, index) pairs of 12 bytes.
+  /// The sparse factor: nUsed 80 (11 nUsed^(1/3) for a volume) (value, index) pairs of 12 bytes.
   std::uint64_t Factor = 0;
 
   /// The sum of the four terms.
@@ -68,6 +71,7 @@ struct MemoryEstimate
  * \param bytesPerValue Size of one value of the output basis: 8 (double) or 4 (float); 0 for
  *        none.
  * \param keepEigenvectors Whether the solver keeps its eigenvectors (false: a spectrum alone).
+ * \param volume Whether the mesh is a volume (tetrahedra): the factor's fill of a 3-D mesh.
  * \return The terms of the estimate.
  */
 MemoryEstimate EstimateBasisMemory(std::uint64_t n,
@@ -75,7 +79,8 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   int m,
   int bandSize,
   int bytesPerValue,
-  bool keepEigenvectors = true);
+  bool keepEigenvectors = true,
+  bool volume = false);
 
 /**
  * The memory available to a new computation, in bytes: MemAvailable of /proc/meminfo on Linux

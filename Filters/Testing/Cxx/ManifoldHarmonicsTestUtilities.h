@@ -50,19 +50,20 @@ inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
   return difference / scale;
 }
 
-/// The points with one vertex cell each and no polygon: what vtkManifoldHarmonicBasis passes
-/// through without a basis.
-inline vtkSmartPointer<vtkPolyData> VerticesOnly(vtkPoints* points)
+/// The points joined by one polyline, without polygons: what vtkManifoldHarmonicBasis passes
+/// through without a basis (points with vertex cells only are a point cloud, an error).
+inline vtkSmartPointer<vtkPolyData> LinesOnly(vtkPoints* points)
 {
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  auto vertices = vtkSmartPointer<vtkCellArray>::New();
-  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  auto curve = vtkSmartPointer<vtkPolyData>::New();
+  curve->SetPoints(points);
+  auto lines = vtkSmartPointer<vtkCellArray>::New();
+  lines->InsertNextCell(curve->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < curve->GetNumberOfPoints(); ++i)
   {
-    vertices->InsertNextCell(1, &i);
+    lines->InsertCellPoint(i);
   }
-  cloud->SetVerts(vertices);
-  return cloud;
+  curve->SetLines(lines);
+  return curve;
 }
 
 /// A ProgressEvent observer that counts the reports strictly inside (0, 1) (the executive

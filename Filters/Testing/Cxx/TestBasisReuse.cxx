@@ -84,7 +84,7 @@ struct Downstream
   {
     return this->Transform->GetOutput()->GetFieldData()->GetArray(name);
   }
-  vtkPolyData* Output() { return this->Filter->GetOutput(); }
+  vtkPolyData* Output() { return vtkPolyData::SafeDownCast(this->Filter->GetOutput()); }
 };
 
 //------------------------------------------------------------------------------

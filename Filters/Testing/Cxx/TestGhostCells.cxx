@@ -191,7 +191,7 @@ bool TestGhostCellsLeftOut(vtkPolyData* sphere)
   ok &= Check(nyquist < 1e-12, "ghost cells change the Nyquist frequency");
   ok &= Check(filtered < 1e-9, "ghost cells change the filtered points");
   ok &= Check(shapeDNA < 1e-9, "ghost cells change ShapeDNA");
-  vtkPolyData* output = piece.Filter->GetOutput();
+  vtkPolyData* output = piece.Filter->GetPolyDataOutput();
   ok &= Check(output->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()) &&
       output->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
     "the outputs lost the input's ghost arrays");

@@ -108,25 +108,25 @@ vtkSmartPointer<vtkPolyData> Run(vtkPolyData* input, int m, vtkTest::ErrorObserv
     basis->AddObserver(vtkCommand::ErrorEvent, observer);
   }
   basis->Update();
-  return basis->GetOutput();
+  return basis->GetPolyDataOutput();
 }
 
 //------------------------------------------------------------------------------
-vtkDoubleArray* Harmonics(vtkPolyData* output)
+vtkDoubleArray* Harmonics(vtkDataSet* output)
 {
   return vtkDoubleArray::SafeDownCast(
     output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()));
 }
 
 //------------------------------------------------------------------------------
-vtkDoubleArray* Mass(vtkPolyData* output)
+vtkDoubleArray* Mass(vtkDataSet* output)
 {
   return vtkDoubleArray::SafeDownCast(
     output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::MassArrayName()));
 }
 
 //------------------------------------------------------------------------------
-vtkDoubleArray* Eigenvalues(vtkPolyData* output)
+vtkDoubleArray* Eigenvalues(vtkDataSet* output)
 {
   return vtkDoubleArray::SafeDownCast(
     output->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName()));
@@ -293,7 +293,7 @@ bool TestAbort()
     vtkNew<vtkTest::ErrorObserver> errors;
     basis->AddObserver(vtkCommand::ErrorEvent, errors);
     basis->Update();
-    vtkPolyData* output = basis->GetOutput();
+    vtkPolyData* output = basis->GetPolyDataOutput();
     ok &= Check(abort->Aborts > 0, "the progress observer was called");
     ok &= Check(!errors->GetError(), "abort is not an error");
     ok &= Check(output->GetNumberOfPoints() == 0 && !Harmonics(output),
@@ -385,7 +385,7 @@ bool TestMinimumComponentSize()
     vtkNew<vtkTest::ErrorObserver> warnings;
     basis->AddObserver(vtkCommand::WarningEvent, warnings);
     basis->Update();
-    vtkPolyData* output = basis->GetOutput();
+    vtkPolyData* output = basis->GetPolyDataOutput();
     vtkDoubleArray* lambda = Eigenvalues(output);
     vtkDoubleArray* D = Mass(output);
     ok &= Check(lambda && D && lambda->GetNumberOfTuples() == 6, "a basis of 6 harmonics");
@@ -518,7 +518,7 @@ bool TestBasisPrecision()
 
   basis->SetBasisPrecisionToFloat();
   basis->Update();
-  vtkPolyData* output = basis->GetOutput();
+  vtkPolyData* output = basis->GetPolyDataOutput();
   auto* floats = vtkFloatArray::SafeDownCast(
     output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()));
   ok &= Check(floats && floats->GetNumberOfComponents() == m &&

@@ -86,7 +86,7 @@ bool TestSameAsThreeStages(vtkPolyData* input)
   smoothing->SetNumberOfHarmonics(30);
   smoothing->SetCutoffFraction(0.6);
   smoothing->Update();
-  vtkPolyData* smoothed = smoothing->GetOutput();
+  vtkPolyData* smoothed = smoothing->GetPolyDataOutput();
 
   vtkNew<vtkManifoldHarmonicBasis> basis;
   basis->SetInputData(input);
@@ -94,8 +94,8 @@ bool TestSameAsThreeStages(vtkPolyData* input)
   vtkNew<vtkManifoldHarmonicTransform> transform;
   transform->SetInputConnection(basis->GetOutputPort());
   transform->Update();
-  vtkDataArray* lambda = basis->GetOutput()->GetFieldData()->GetArray(
-    vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  vtkDataArray* lambda =
+    basis->GetOutput()->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
   filter->SetCutoff(0.6 * std::sqrt(lambda->GetTuple1(29)));
@@ -107,8 +107,8 @@ bool TestSameAsThreeStages(vtkPolyData* input)
     "no harmonics array on the smoothed output");
   ok &= Check(smoothed->GetPointData()->GetArray("Normals") != nullptr, "input arrays are kept");
   const double difference = MaxDistance(smoothed->GetPoints(), filter->GetOutput()->GetPoints());
-  ok &= Check(difference < 1e-12, "smoothing equals the three stages (" +
-      std::to_string(difference) + ")");
+  ok &= Check(
+    difference < 1e-12, "smoothing equals the three stages (" + std::to_string(difference) + ")");
   const double moved = MaxDistance(smoothed->GetPoints(), input->GetPoints());
   ok &= Check(moved > 1e-3, "smoothing moves the noisy points");
 
@@ -165,8 +165,9 @@ bool TestSpectrumTable(vtkPolyData* input)
   filter->Update();
   vtkTable* spectrum = filter->GetSpectrumOutput();
   bool ok = Check(spectrum->GetNumberOfRows() == 20, "spectrum has one row per harmonic");
-  const char* names[] = { "Index", "Frequency", "Gain", "Points_Magnitude",
-    "Points_Filtered_Magnitude" };
+  const char* names[] = {
+    "Index", "Frequency", "Gain", "Points_Magnitude", "Points_Filtered_Magnitude"
+  };
   for (const char* name : names)
   {
     ok &= Check(spectrum->GetColumnByName(name) != nullptr, std::string("column ") + name);
@@ -182,8 +183,9 @@ bool TestSpectrumTable(vtkPolyData* input)
     const double gain = spectrum->GetValueByName(k, "Gain").ToDouble();
     const double magnitude = spectrum->GetValueByName(k, "Points_Magnitude").ToDouble();
     const double filtered = spectrum->GetValueByName(k, "Points_Filtered_Magnitude").ToDouble();
-    ok &= Check(std::abs(magnitude - before->GetValueByName(k, "Points_Magnitude").ToDouble()) <
-        1e-12, "magnitude before filtering equals the transform's");
+    ok &=
+      Check(std::abs(magnitude - before->GetValueByName(k, "Points_Magnitude").ToDouble()) < 1e-12,
+        "magnitude before filtering equals the transform's");
     ok &= Check(std::abs(filtered - gain * magnitude) < 1e-12, "filtered magnitude = gain x");
     ok &= Check(omega < 2.85 ? gain == 1.0 : (omega > 3.15 ? gain == 0.0 : true),
       "low-pass gain at omega " + std::to_string(omega));
@@ -384,7 +386,7 @@ bool TestNoPolygons()
   smoothing->AddObserver(vtkCommand::WarningEvent, messages);
   smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, messages);
   smoothing->Update();
-  vtkPolyData* output = smoothing->GetOutput();
+  vtkPolyData* output = smoothing->GetPolyDataOutput();
   std::cout << "No polygons: " << output->GetNumberOfPoints() << " points, "
             << output->GetNumberOfLines() << " line passed on" << std::endl;
   return Check(!messages->GetError() && messages->GetWarning() &&

@@ -35,7 +35,7 @@ namespace
 {
 using ManifoldHarmonicsTest::AbortAtFirstProgress;
 using ManifoldHarmonicsTest::Check;
-using ManifoldHarmonicsTest::VerticesOnly;
+using ManifoldHarmonicsTest::LinesOnly;
 
 //------------------------------------------------------------------------------
 // A unit sphere (double points) with a smooth scalar "Height" (float and double copies) and an
@@ -81,7 +81,7 @@ vtkSmartPointer<vtkPolyData> MakeBasis(int harmonics)
   basis->SetInputData(mesh);
   basis->SetNumberOfHarmonics(harmonics);
   basis->Update();
-  vtkSmartPointer<vtkPolyData> output = basis->GetOutput();
+  vtkSmartPointer<vtkPolyData> output = basis->GetPolyDataOutput();
   return output;
 }
 
@@ -123,7 +123,7 @@ bool TestNamesAndShapes()
   transform->Update();
 
   bool ok = true;
-  vtkPolyData* output = transform->GetOutput();
+  vtkPolyData* output = transform->GetPolyDataOutput();
   vtkFieldData* fd = output->GetFieldData();
   ok &= Check(output->GetNumberOfPoints() == basis->GetNumberOfPoints(), "point count changed");
   ok &= Check(output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()),
@@ -247,7 +247,7 @@ bool TestSelectionModifies()
 
 //------------------------------------------------------------------------------
 // Runs the transform on `input` and expects an error mentioning each of `words`.
-bool ExpectError(vtkPolyData* input, const std::string& words1, const std::string& words2)
+bool ExpectError(vtkPointSet* input, const std::string& words1, const std::string& words2)
 {
   vtkNew<vtkTest::ErrorObserver> filterErrors;
   vtkNew<vtkTest::ErrorObserver> executiveErrors;
@@ -299,7 +299,7 @@ bool TestErrors()
 
   // Points without polygons, passed through by the basis without a basis (it warns): the error
   // says why there is no basis instead of asking for the filter that is upstream.
-  vtkSmartPointer<vtkPolyData> cloud = VerticesOnly(sphere->GetOutput()->GetPoints());
+  vtkSmartPointer<vtkPolyData> cloud = LinesOnly(sphere->GetOutput()->GetPoints());
   vtkNew<vtkManifoldHarmonicBasis> passThrough;
   vtkNew<vtkTest::ErrorObserver> basisWarnings;
   passThrough->AddObserver(vtkCommand::WarningEvent, basisWarnings);
@@ -308,8 +308,10 @@ bool TestErrors()
   ok &= Check(basisWarnings->GetWarning() &&
       passThrough->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(),
     "set-up: the basis passes points without polygons through, with a warning");
-  ok &= ExpectError(passThrough->GetOutput(), vtkManifoldHarmonicBasis::HarmonicsArrayName(),
-    "the input has no polygons, so ManifoldHarmonicBasis passed it through without a basis");
+  ok &= ExpectError(passThrough->GetOutput(),
+    vtkManifoldHarmonicBasis::HarmonicsArrayName(),
+    "the input has no polygons or volume cells, so ManifoldHarmonicBasis passed it "
+    "through without a basis");
   return ok;
 }
 
@@ -326,7 +328,7 @@ bool TestAbort()
   vtkNew<AbortAtFirstProgress> abort;
   const unsigned long observer = transform->AddObserver(vtkCommand::ProgressEvent, abort);
   transform->Update();
-  vtkPolyData* output = transform->GetOutput();
+  vtkPolyData* output = transform->GetPolyDataOutput();
   std::cout << "Abort: " << abort->Count << " progress report(s), " << output->GetNumberOfPoints()
             << " points, " << transform->GetSpectrumOutput()->GetNumberOfColumns()
             << " spectrum columns out" << std::endl;

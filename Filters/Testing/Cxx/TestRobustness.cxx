@@ -11,6 +11,7 @@
 
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
+#include "vtkPointSetAlgorithm.h"
 #include "vtkSpectralFilter.h"
 
 #include "ManifoldHarmonicsTestUtilities.h"
@@ -331,11 +332,11 @@ Outcome RunBasis(vtkPolyData* input, int m, int laplacian, int expectedM = -1)
   basis->SetInputData(input);
   basis->Update();
   Outcome out;
-  out.Output = basis->GetOutput();
+  out.Output = basis->GetPolyDataOutput();
   out.Error = messages->GetError();
   out.Errors = messages->GetErrorMessage();
   out.Warnings = messages->GetWarningMessage();
-  vtkPolyData* output = basis->GetOutput();
+  vtkPolyData* output = basis->GetPolyDataOutput();
   const bool hasHarmonics =
     output->GetPointData()->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName()) != nullptr;
   out.PassedThrough =
@@ -819,7 +820,7 @@ vtkSmartPointer<vtkPolyData> BasisOf(vtkPolyData* mesh, int m)
 
 //------------------------------------------------------------------------------
 // Runs an algorithm on `input`, expecting an error that contains `words`.
-bool ExpectError(vtkPolyDataAlgorithm* algorithm,
+bool ExpectError(vtkPointSetAlgorithm* algorithm,
   vtkPolyData* input,
   const std::string& words,
   const std::string& what)

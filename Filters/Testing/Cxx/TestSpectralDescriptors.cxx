@@ -63,7 +63,7 @@ vtkSmartPointer<vtkPolyData> SphereBasis(double radius,
     basis->SetBasisPrecisionToFloat();
   }
   basis->Update();
-  vtkSmartPointer<vtkPolyData> output = basis->GetOutput();
+  vtkSmartPointer<vtkPolyData> output = basis->GetPolyDataOutput();
   return output;
 }
 

@@ -48,8 +48,8 @@ namespace
 {
 using ManifoldHarmonicsTest::AbortAtFirstProgress;
 using ManifoldHarmonicsTest::Check;
+using ManifoldHarmonicsTest::LinesOnly;
 using ManifoldHarmonicsTest::RelativeDifference;
-using ManifoldHarmonicsTest::VerticesOnly;
 
 //------------------------------------------------------------------------------
 // Counts the executions of an algorithm (its EndEvent).
@@ -84,7 +84,7 @@ struct Pipeline
   vtkPolyData* Run()
   {
     this->Filter->Update();
-    return this->Filter->GetOutput();
+    return this->Filter->GetPolyDataOutput();
   }
   // Gain 1 at every frequency.
   void SetIdentity()
@@ -557,7 +557,7 @@ bool TestHeatDiffusion()
 
   pipeline.Filter->SetTime(1e3);
   vtkPolyData* output = pipeline.Run();
-  vtkPolyData* basis = pipeline.Basis->GetOutput();
+  vtkPolyData* basis = pipeline.Basis->GetPolyDataOutput();
   const char* names[] = { "A", "B" };
   for (const char* name : names)
   {
@@ -1004,16 +1004,17 @@ bool TestMissingInputs()
 
   // Points without polygons: the basis passes them through without a basis (a warning of its
   // own); the filter's error says so instead of asking for the basis that is upstream.
-  vtkSmartPointer<vtkPolyData> cloud = VerticesOnly(sphere->GetOutput()->GetPoints());
+  vtkSmartPointer<vtkPolyData> cloud = LinesOnly(sphere->GetOutput()->GetPoints());
   vtkNew<vtkTest::ErrorObserver> basisWarnings;
   basis->AddObserver(vtkCommand::WarningEvent, basisWarnings);
   basis->SetInputData(cloud);
   filter->Update();
   std::cout << "Expected error:" << AfterLocation(errors->GetErrorMessage());
   ok &= Check(basisWarnings->GetWarning(), "set-up: the basis warns about the missing polygons");
-  ok &= Check(errors->CheckErrorMessage("the input has no polygons, so ManifoldHarmonicBasis "
-                                        "passed it through without a basis") == 0,
-    "the error does not say that the input has no polygons");
+  ok &=
+    Check(errors->CheckErrorMessage("the input has no polygons or volume cells, so "
+                                    "ManifoldHarmonicBasis passed it through without a basis") == 0,
+      "the error does not say that the input has no polygons");
   return ok;
 }
 } // anonymous namespace
