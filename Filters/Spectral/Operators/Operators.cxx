@@ -40,10 +40,6 @@ bool IsDegenerate(const TriangleMesh& mesh, int f)
   return !(doubleArea > 1e-12 * longest);
 }
 
-/// Largest coordinate magnitude PrepareMesh accepts: squared areas (edge lengths to the fourth
-/// power) stay finite below it.
-constexpr double MaxCoordinate = 1e75;
-
 /**
  * Keeps the first of triangles with the same three corners (either orientation): `corners`
  * holds the sorted corners of each triangle of `kept`, in the same order; both are reduced to
@@ -106,19 +102,7 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
         throw InvalidInput("triangle " + std::to_string(f) + " refers to point " +
           std::to_string(id) + " but the mesh has " + std::to_string(numPts) + " points");
       }
-      if (!input.Vertices.row(id).allFinite())
-      {
-        throw InvalidInput("point " + std::to_string(id) +
-          " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
-      }
-      const double magnitude = input.Vertices.row(id).cwiseAbs().maxCoeff();
-      if (magnitude > MaxCoordinate)
-      {
-        char value[32];
-        std::snprintf(value, sizeof(value), "%g", magnitude);
-        throw InvalidInput("point " + std::to_string(id) + " has a coordinate of magnitude " +
-          value + ", beyond 1e75 where triangle areas overflow; rescale the mesh");
-      }
+      CheckCoordinates(input.Vertices, id);
     }
   }
 
@@ -172,6 +156,24 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
     }
   }
   return out;
+}
+
+//------------------------------------------------------------------------------
+void CheckCoordinates(const Points& points, Eigen::Index id)
+{
+  if (!points.row(id).allFinite())
+  {
+    throw InvalidInput("point " + std::to_string(id) +
+      " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
+  }
+  const double magnitude = points.row(id).cwiseAbs().maxCoeff();
+  if (magnitude > MaxCoordinate)
+  {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%g", magnitude);
+    throw InvalidInput("point " + std::to_string(id) + " has a coordinate of magnitude " + value +
+      ", beyond 1e75 where triangle areas overflow; rescale the mesh");
+  }
 }
 
 //------------------------------------------------------------------------------

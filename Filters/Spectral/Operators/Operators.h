@@ -39,6 +39,17 @@ struct PreparedMesh
   int SmallComponentPoints = 0;
 };
 
+/// Largest coordinate magnitude the operators accept: squared areas (edge lengths to the fourth
+/// power) stay finite below it.
+constexpr double MaxCoordinate = 1e75;
+
+/**
+ * The one check of a point's coordinates, for every kind of input.
+ * \throws InvalidInput if point `id` has a non-finite coordinate or one of magnitude above
+ *         MaxCoordinate.
+ */
+void CheckCoordinates(const Points& points, Eigen::Index id);
+
 /**
  * Keep the triangles with non-zero area, once each, and the points they use.
  *
@@ -48,8 +59,8 @@ struct PreparedMesh
  *
  * \param input Points and triangles; indices must lie in [0, #V).
  * \return The compact mesh with the map back to input point ids.
- * \throws InvalidInput for an index out of range, or a non-finite coordinate or one of magnitude
- *         above 1e75 (where squared areas overflow) on a used point.
+ * \throws InvalidInput for an index out of range, or a coordinate that CheckCoordinates refuses
+ *         on a used point.
  */
 PreparedMesh PrepareMesh(const TriangleMesh& input);
 
