@@ -19,13 +19,21 @@
  * needles, zero-area triangles, islands; see CaseMesh). --threads T sets the eigensolver's
  * threads (default 0: every core).
  *
- * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--threads T] [--filter]
- *        [--scipy] [--scipy-max-n N] [--workdir DIR]
+ * With --cloud the torus's points alone, without its triangles, go through the point-cloud
+ * Laplacian (spectral::PointCloudLaplacian, NumberOfNeighbors 30), whose steps are timed apart
+ * (neighbours, local triangulations, intrinsic Delaunay flips and operators), and are solved
+ * component by component with the eigensolver as ComputeBasis does (without its two fallbacks
+ * and its change of units, which the torus of size 1 does not need).
+ *
+ * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--cloud] [--threads T]
+ *        [--filter] [--scipy] [--scipy-max-n N] [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
 #include "Basis.h"
+#include "Common/Threads.h"
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
+#include "Operators/PointCloud.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -55,6 +63,8 @@ struct Settings
   int ScipyMaxN = 200000;
   /// The torus with the defects of a range scan (ScanMesh).
   bool Scan = false;
+  /// The torus's points as a cloud (PointCloudLaplacian) instead of its triangles.
+  bool Cloud = false;
   /// Threads of the eigensolver; 0 = every core.
   int Threads = 0;
   std::string WorkDir = "/tmp";
@@ -218,6 +228,64 @@ spectral::TriangleMesh CaseMesh(const Settings& settings, int n)
   return spectral::testing::WithScanDefects(torus, defects);
 }
 
+/**
+ * The basis of a cloud: PointCloudLaplacian, with the seconds of each of its steps in `steps`,
+ * then the m smallest eigenpairs one component at a time, as ComputeBasis solves a mesh's
+ * operators (one pair is solved as the first of two).
+ */
+spectral::BasisResult CloudBasis(const Settings& settings,
+  const spectral::Points& cloud,
+  int m,
+  spectral::DiscreteLaplacian& ops,
+  std::string& steps)
+{
+  const Clock::time_point start = Clock::now();
+  std::vector<std::pair<std::string, Clock::time_point>> stages;
+  spectral::Monitor monitor;
+  monitor.Stage = [&stages](const char* stage) { stages.emplace_back(stage, Clock::now()); };
+  {
+    const spectral::ScopedThreadLimit limit(settings.Threads);
+    ops = spectral::PointCloudLaplacian(cloud, spectral::PointCloudOptions(), monitor);
+  }
+  spectral::BasisResult basis;
+  basis.AssemblySeconds = Since(start);
+  stages.emplace_back("", Clock::now());
+  steps = "  cloud:";
+  for (std::size_t s = 0; s + 1 < stages.size(); ++s)
+  {
+    char buffer[96];
+    std::snprintf(buffer,
+      sizeof(buffer),
+      " %s %.2f s",
+      stages[s].first.c_str(),
+      std::chrono::duration<double>(stages[s + 1].second - stages[s].second).count());
+    steps += buffer;
+  }
+  spectral::EigenOptions options;
+  options.BandSize = settings.BandSize;
+  options.Threads = settings.Threads;
+  const spectral::PairSolver solve = [&options](const spectral::SparseMatrix& L,
+                                       const spectral::SparseMatrix& M,
+                                       int k,
+                                       const spectral::Monitor& part)
+  {
+    spectral::EigenOptions each = options;
+    each.NumberOfEigenpairs = (k == 1 && L.rows() > 1) ? 2 : k;
+    spectral::EigenResult r = spectral::SmallestEigenpairs(L, M, each, part);
+    r.Eigenvalues.conservativeResize(k);
+    r.Eigenvectors.conservativeResize(Eigen::NoChange, k);
+    return r;
+  };
+  basis.Pairs = spectral::SmallestEigenpairsByComponent(ops.Stiffness,
+    ops.Mass,
+    ops.LumpedMass,
+    ops.Components.Label,
+    ops.Components.Count,
+    std::min(m, static_cast<int>(ops.Stiffness.rows())),
+    solve);
+  return basis;
+}
+
 /// One case, run in the child process. Prints its row and returns an exit code.
 int RunCase(const Settings& settings, int n, int m)
 {
@@ -229,9 +297,18 @@ int RunCase(const Settings& settings, int n, int m)
   options.Solver.BandSize = settings.BandSize;
   options.Solver.Threads = settings.Threads;
   spectral::BasisResult basis;
+  spectral::DiscreteLaplacian ops;
+  std::string steps = "";
   try
   {
-    basis = spectral::ComputeBasis(mesh, options);
+    if (settings.Cloud)
+    {
+      basis = CloudBasis(settings, mesh.Vertices, m, ops, steps);
+    }
+    else
+    {
+      basis = spectral::ComputeBasis(mesh, options);
+    }
   }
   catch (const std::exception& e)
   {
@@ -242,15 +319,17 @@ int RunCase(const Settings& settings, int n, int m)
   const double total = Since(start);
   const double assembly = basis.AssemblySeconds;
   const spectral::EigenResult& result = basis.Pairs;
-  // The same operators again, untimed, for the checks and for scipy.
-  const spectral::DiscreteLaplacian ops =
-    spectral::AssembleLaplacian(spectral::PrepareMesh(mesh), options.Operators);
+  if (!settings.Cloud)
+  {
+    // The same operators again, untimed, for the checks and for scipy.
+    ops = spectral::AssembleLaplacian(spectral::PrepareMesh(mesh), options.Operators);
+  }
   const spectral::SparseMatrix& L = ops.Stiffness;
   const spectral::SparseMatrix& M = ops.Mass;
   const double orthogonality = spectral::OrthonormalityError(result.Eigenvectors, M);
 
-  std::string filter = "";
-  if (settings.Filter)
+  std::string filter = steps;
+  if (settings.Filter && !settings.Cloud)
   {
     filter = FilterStageColumn(mesh, result, M.diagonal());
   }
@@ -309,7 +388,7 @@ Settings Parse(int argc, char* argv[])
   const auto usage = [argv]()
   {
     std::fprintf(stderr,
-      "usage: %s [--case N:M]... [--band K] [--scan] [--threads T] [--filter] [--scipy] "
+      "usage: %s [--case N:M]... [--band K] [--scan] [--cloud] [--threads T] [--filter] [--scipy] "
       "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
     std::exit(2);
@@ -363,6 +442,10 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--scan")
     {
       settings.Scan = true;
+    }
+    else if (arg == "--cloud")
+    {
+      settings.Cloud = true;
     }
     else if (arg == "--threads" && i + 1 < argc)
     {

@@ -349,6 +349,57 @@ std::string Plural(int count, const char* one, const char* many)
 {
   return std::to_string(count) + " " + (count == 1 ? one : many);
 }
+//------------------------------------------------------------------------------
+// The soup on the points it uses, renumbered in input order; their input ids go to
+// out.InputPointIds, and a warning counts the points left without a row.
+TriangleMesh UsedPoints(const Points& cloud,
+  const std::vector<int>& inputIds,
+  const std::vector<std::array<int, 3>>& soup,
+  DiscreteLaplacian& out)
+{
+  const int n = static_cast<int>(cloud.rows());
+  std::vector<int> row(static_cast<std::size_t>(n), -1);
+  for (const std::array<int, 3>& t : soup)
+  {
+    for (int c : t)
+    {
+      row[static_cast<std::size_t>(c)] = 1;
+    }
+  }
+  TriangleMesh mesh;
+  for (int i = 0; i < n; ++i)
+  {
+    if (row[static_cast<std::size_t>(i)] > 0)
+    {
+      row[static_cast<std::size_t>(i)] = static_cast<int>(out.InputPointIds.size());
+      out.InputPointIds.push_back(inputIds[static_cast<std::size_t>(i)]);
+    }
+  }
+  const int unused = n - static_cast<int>(out.InputPointIds.size());
+  if (unused > 0)
+  {
+    out.Warnings.push_back(Plural(unused, "point lies", "points lie") +
+      " in no local triangle (far from the other points, or with neighbours on a line): "
+      "their harmonics and mass are 0.");
+  }
+  mesh.Vertices.resize(static_cast<Eigen::Index>(out.InputPointIds.size()), 3);
+  for (int i = 0; i < n; ++i)
+  {
+    if (row[static_cast<std::size_t>(i)] >= 0)
+    {
+      mesh.Vertices.row(row[static_cast<std::size_t>(i)]) = cloud.row(i);
+    }
+  }
+  mesh.Faces.resize(static_cast<Eigen::Index>(soup.size()), 3);
+  for (std::size_t f = 0; f < soup.size(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      mesh.Faces(static_cast<Eigen::Index>(f), c) = row[static_cast<std::size_t>(soup[f][c])];
+    }
+  }
+  return mesh;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -413,47 +464,7 @@ DiscreteLaplacian PointCloudLaplacian(const Points& points,
     throw InvalidInput("the point cloud spans no surface: no point has neighbours that span a "
                        "plane around it (are the points on a line?)");
   }
-  // Rows for the points that some triangle uses, in input order.
-  std::vector<int> row(static_cast<std::size_t>(n), -1);
-  for (const std::array<int, 3>& t : soup)
-  {
-    for (int c : t)
-    {
-      row[static_cast<std::size_t>(c)] = 0;
-    }
-  }
-  TriangleMesh mesh;
-  for (int i = 0; i < n; ++i)
-  {
-    if (row[static_cast<std::size_t>(i)] == 0)
-    {
-      row[static_cast<std::size_t>(i)] = static_cast<int>(out.InputPointIds.size());
-      out.InputPointIds.push_back(distinct.InputIds[static_cast<std::size_t>(i)]);
-    }
-  }
-  const int unused = n - static_cast<int>(out.InputPointIds.size());
-  if (unused > 0)
-  {
-    out.Warnings.push_back(Plural(unused, "point lies", "points lie") +
-      " in no local triangle (far from the other points, or with neighbours on a line): "
-      "their harmonics and mass are 0.");
-  }
-  mesh.Vertices.resize(static_cast<Eigen::Index>(out.InputPointIds.size()), 3);
-  for (int i = 0; i < n; ++i)
-  {
-    if (row[static_cast<std::size_t>(i)] >= 0)
-    {
-      mesh.Vertices.row(row[static_cast<std::size_t>(i)]) = cloud.row(i);
-    }
-  }
-  mesh.Faces.resize(static_cast<Eigen::Index>(soup.size()), 3);
-  for (std::size_t f = 0; f < soup.size(); ++f)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      mesh.Faces(static_cast<Eigen::Index>(f), c) = row[static_cast<std::size_t>(soup[f][c])];
-    }
-  }
+  const TriangleMesh mesh = UsedPoints(cloud, distinct.InputIds, soup, out);
   soup = std::vector<std::array<int, 3>>();
   monitor.ThrowIfCancelled();
 
