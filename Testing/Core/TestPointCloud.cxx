@@ -574,9 +574,10 @@ void ProgressAndCancellation()
   monitor.Stage = [&stages](const char* stage) { stages.emplace_back(stage); };
   monitor.Progress = [&progress](double f) { progress.push_back(f); };
   PointCloudLaplacian(cloud, PointCloudOptions(), monitor);
-  Check(
-    stages == std::vector<std::string>{ "Neighbors", "Local triangulations", "Intrinsic Delaunay" },
-    "the three steps are announced in order");
+  Check(stages ==
+      std::vector<std::string>{
+        "Neighbors", "Local triangulations", "Intrinsic Delaunay", "Operators" },
+    "the four steps are announced in order");
   Check(!progress.empty() && std::is_sorted(progress.begin(), progress.end()) &&
       progress.front() >= 0.0 && progress.back() == 1.0,
     "progress rises from 0 to 1 (" + std::to_string(progress.size()) + " reports)");

@@ -477,6 +477,7 @@ DiscreteLaplacian PointCloudLaplacian(const Points& points,
   {
     out.Warnings.push_back(text);
   }
+  monitor.Begin("Operators");
   out.Stiffness = IntrinsicCotanStiffness(T);
   out.LumpedMass = IntrinsicLumpedMass(T);
   out.Mass = options.Mass == MassKind::Consistent ? IntrinsicConsistentMass(T)

@@ -95,11 +95,12 @@ struct PointCloudOptions
  *
  * \param points #V by 3 coordinates.
  * \param options k and the mass.
- * \param monitor Stage receives "Neighbors", "Local triangulations" and "Intrinsic Delaunay" as
- *        each step begins; Progress goes from 0 to 1 over the three; Cancelled is polled in
- *        each. Callbacks are called from the calling thread only (the steps run on the threads
- *        of ResolveThreads(0), Common/Threads.h). No warning is passed to it: they are in
- *        the result's Warnings, as with AssembleLaplacian.
+ * \param monitor Stage receives "Neighbors", "Local triangulations", "Intrinsic Delaunay" (the
+ *        tufted cover and its flips) and "Operators" (stiffness and mass) as each step begins;
+ *        Progress goes from 0 to 1 over the four; Cancelled is polled in the first three.
+ *        Callbacks are called from the calling thread only (the steps run on the threads of
+ *        ResolveThreads(0), Common/Threads.h). No warning is passed to it: they are in the
+ *        result's Warnings, as with AssembleLaplacian.
  * \return Stiffness Q (symmetric, Q 1 = 0, off-diagonal entries <= 0 up to the flip tolerance),
  *         Mass, LumpedMass (sum: the area of the sampled surface), InputPointIds, Components,
  *         Diameter (of the points with rows) and Warnings.
