@@ -25,13 +25,22 @@
  * ends with the entries of the LDL^T factor per row (its fill-in: a volume's factor fills far
  * more than a surface's).
  *
- * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--volume] [--threads T]
- *        [--filter] [--eigenvalues-only] [--scipy] [--scipy-max-n N] [--workdir DIR]
+ * With --cloud the torus's points alone, without its triangles, go through the point-cloud
+ * Laplacian (spectral::PointCloudLaplacian, NumberOfNeighbors 30), whose steps are timed apart
+ * (neighbours, local triangulations, intrinsic Delaunay flips and operators), and are solved
+ * component by component with the eigensolver as ComputeBasis does (without its two fallbacks
+ * and its change of units, which the torus of size 1 does not need).
+ *
+ * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--volume] [--cloud]
+ *        [--threads T] [--filter] [--eigenvalues-only] [--scipy] [--scipy-max-n N]
+ *        [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
 #include "Basis.h"
+#include "Common/Threads.h"
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
+#include "Operators/PointCloud.h"
 #include "Solver/SupernodalLDLT.h"
 
 #include <sys/resource.h>
@@ -64,6 +73,8 @@ struct Settings
   bool Scan = false;
   /// A tetrahedral ball instead of the torus.
   bool Volume = false;
+  /// The torus's points as a cloud (PointCloudLaplacian) instead of its triangles.
+  bool Cloud = false;
   /// Threads of the eigensolver; 0 = every core.
   int Threads = 0;
   /// The spectrum alone (BasisOptions::EigenvaluesOnly).
@@ -235,6 +246,65 @@ spectral::TriangleMesh CaseMesh(const Settings& settings, int n)
   return spectral::testing::WithScanDefects(torus, defects);
 }
 
+/**
+ * The basis of a cloud: PointCloudLaplacian, with the seconds of each of its steps in `steps`,
+ * then the m smallest eigenpairs one component at a time, as ComputeBasis solves a mesh's
+ * operators (one pair is solved as the first of two).
+ */
+spectral::BasisResult CloudBasis(const Settings& settings,
+  const spectral::Points& cloud,
+  int m,
+  spectral::DiscreteLaplacian& ops,
+  std::string& steps)
+{
+  const Clock::time_point start = Clock::now();
+  std::vector<std::pair<std::string, Clock::time_point>> stages;
+  spectral::Monitor monitor;
+  monitor.Stage = [&stages](const char* stage) { stages.emplace_back(stage, Clock::now()); };
+  {
+    const spectral::ScopedThreadLimit limit(settings.Threads);
+    ops = spectral::PointCloudLaplacian(cloud, spectral::PointCloudOptions(), monitor);
+  }
+  spectral::BasisResult basis;
+  basis.AssemblySeconds = Since(start);
+  stages.emplace_back("", Clock::now());
+  steps = "  cloud:";
+  for (std::size_t s = 0; s + 1 < stages.size(); ++s)
+  {
+    char buffer[96];
+    std::snprintf(buffer,
+      sizeof(buffer),
+      " %s %.2f s",
+      stages[s].first.c_str(),
+      std::chrono::duration<double>(stages[s + 1].second - stages[s].second).count());
+    steps += buffer;
+  }
+  spectral::EigenOptions options;
+  options.BandSize = settings.BandSize;
+  options.Threads = settings.Threads;
+  const spectral::PairSolver solve = [&options](const spectral::SparseMatrix& L,
+                                       const spectral::SparseMatrix& M,
+                                       const spectral::PairRequest& request,
+                                       const spectral::Monitor& part)
+  {
+    const int k = request.Count;
+    spectral::EigenOptions each = options;
+    each.NumberOfEigenpairs = (k == 1 && L.rows() > 1) ? 2 : k;
+    spectral::EigenResult r = spectral::SmallestEigenpairs(L, M, each, part);
+    r.Eigenvalues.conservativeResize(k);
+    r.Eigenvectors.conservativeResize(Eigen::NoChange, k);
+    return r;
+  };
+  basis.Pairs = spectral::SmallestEigenpairsByComponent(ops.Stiffness,
+    ops.Mass,
+    ops.LumpedMass,
+    ops.Components.Label,
+    ops.Components.Count,
+    std::min(m, static_cast<int>(ops.Stiffness.rows())),
+    solve);
+  return basis;
+}
+
 /// One case, run in the child process. Prints its row and returns an exit code.
 int RunCase(const Settings& settings, int n, int m)
 {
@@ -247,9 +317,18 @@ int RunCase(const Settings& settings, int n, int m)
   options.Solver.Threads = settings.Threads;
   options.EigenvaluesOnly = settings.EigenvaluesOnly;
   spectral::BasisResult basis;
+  spectral::DiscreteLaplacian ops;
+  std::string steps = "";
   try
   {
-    basis = spectral::ComputeBasis(mesh, options);
+    if (settings.Cloud)
+    {
+      basis = CloudBasis(settings, mesh.Vertices, m, ops, steps);
+    }
+    else
+    {
+      basis = spectral::ComputeBasis(mesh, options);
+    }
   }
   catch (const std::exception& e)
   {
@@ -260,9 +339,11 @@ int RunCase(const Settings& settings, int n, int m)
   const double total = Since(start);
   const double assembly = basis.AssemblySeconds;
   const spectral::EigenResult& result = basis.Pairs;
-  // The same operators again, untimed, for the checks and for scipy.
-  const spectral::DiscreteLaplacian ops =
-    spectral::AssembleLaplacian(spectral::PrepareMesh(mesh), options.Operators);
+  if (!settings.Cloud)
+  {
+    // The same operators again, untimed, for the checks and for scipy.
+    ops = spectral::AssembleLaplacian(spectral::PrepareMesh(mesh), options.Operators);
+  }
   const spectral::SparseMatrix& L = ops.Stiffness;
   const spectral::SparseMatrix& M = ops.Mass;
   const bool vectors = result.Eigenvectors.cols() > 0;
@@ -275,8 +356,8 @@ int RunCase(const Settings& settings, int n, int m)
       spectral::OrthonormalityError(result.Eigenvectors, M));
   }
 
-  std::string filter = "";
-  if (settings.Filter && vectors)
+  std::string filter = steps;
+  if (settings.Filter && vectors && !settings.Cloud)
   {
     filter = FilterStageColumn(mesh, result, M.diagonal());
   }
@@ -347,8 +428,8 @@ Settings Parse(int argc, char* argv[])
   const auto usage = [argv]()
   {
     std::fprintf(stderr,
-      "usage: %s [--case N:M]... [--band K] [--scan] [--volume] [--threads T] [--filter] "
-      "[--eigenvalues-only] [--scipy] "
+      "usage: %s [--case N:M]... [--band K] [--scan] [--volume] [--cloud] [--threads T] "
+      "[--filter] [--eigenvalues-only] [--scipy] "
       "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
     std::exit(2);
@@ -406,6 +487,10 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--volume")
     {
       settings.Volume = true;
+    }
+    else if (arg == "--cloud")
+    {
+      settings.Cloud = true;
     }
     else if (arg == "--threads" && i + 1 < argc)
     {

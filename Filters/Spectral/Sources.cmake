@@ -12,6 +12,8 @@ set(spectral_core_sources
   Operators/Laplacian.cxx
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx
+  Operators/NearestNeighbors.cxx
+  Operators/PointCloud.cxx
   Solver/Components.cxx
   Solver/EigenSolver.cxx
   Solver/Bands.cxx
@@ -36,6 +38,8 @@ set(spectral_core_headers
   Common/Threads.h
   Operators/Operators.h
   Operators/IntrinsicDelaunay.h
+  Operators/NearestNeighbors.h
+  Operators/PointCloud.h
   Solver/Components.h
   Solver/EigenSolver.h
   Solver/Bands.h

@@ -5,6 +5,9 @@
 #ifndef spectral_Testing_Checks_h
 #define spectral_Testing_Checks_h
 
+#include "Common/Mesh.h"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -45,13 +48,18 @@ inline void CheckBelow(double value, double bound, const std::string& what)
 inline void CheckNear(double value, double expected, double tolerance, const std::string& what)
 {
   char buffer[128];
-  std::snprintf(buffer, sizeof(buffer), ": %.12g vs %.12g (|diff| %.2e <= %.1e)", value, expected,
-    std::abs(value - expected), tolerance);
+  std::snprintf(buffer,
+    sizeof(buffer),
+    ": %.12g vs %.12g (|diff| %.2e <= %.1e)",
+    value,
+    expected,
+    std::abs(value - expected),
+    tolerance);
   Check(std::abs(value - expected) <= tolerance, what + buffer);
 }
 
 /// Check that f() throws an exception of type E.
-template <typename E, typename F>
+template<typename E, typename F>
 void CheckThrows(F f, const std::string& what)
 {
   try
@@ -71,6 +79,35 @@ void CheckThrows(F f, const std::string& what)
   Check(false, what + " did not throw");
 }
 
+/// Largest off-diagonal entry of a stiffness matrix (positive = a negative edge weight).
+inline double LargestOffDiagonal(const SparseMatrix& L)
+{
+  double largest = -1e300;
+  for (int col = 0; col < L.outerSize(); ++col)
+  {
+    for (SparseMatrix::InnerIterator it(L, col); it; ++it)
+    {
+      if (it.row() != it.col())
+      {
+        largest = std::max(largest, it.value());
+      }
+    }
+  }
+  return largest;
+}
+
+/// max |L - L^T| and max |L 1|, relative to max |L_ii|.
+inline void CheckStiffness(const SparseMatrix& L, const std::string& what)
+{
+  const double scale = L.diagonal().cwiseAbs().maxCoeff();
+  const SparseMatrix asym = L - SparseMatrix(L.transpose());
+  CheckBelow(asym.coeffs().size() ? asym.coeffs().cwiseAbs().maxCoeff() / scale : 0.0,
+    1e-14,
+    what + ": L symmetric");
+  CheckBelow((L * Vector::Ones(L.rows())).cwiseAbs().maxCoeff() / scale, 1e-12, what + ": L 1 = 0");
+  Check(L.coeffs().allFinite(), what + ": L finite");
+}
+
 /// One named test case: a function that calls the checks.
 struct Case
 {
@@ -82,7 +119,7 @@ struct Case
  * Run the case named by argv[1], or every case without an argument. Returns EXIT_FAILURE if a
  * check failed, a case threw, or the name is unknown.
  */
-template <std::size_t N>
+template<std::size_t N>
 int RunCases(int argc, char* argv[], const Case (&cases)[N])
 {
   bool found = false;

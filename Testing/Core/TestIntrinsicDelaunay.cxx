@@ -20,35 +20,6 @@ namespace
 {
 const double Pi = 3.14159265358979323846;
 
-/// Largest off-diagonal entry of a stiffness matrix (positive = a negative edge weight).
-double LargestOffDiagonal(const SparseMatrix& L)
-{
-  double largest = -1e300;
-  for (int col = 0; col < L.outerSize(); ++col)
-  {
-    for (SparseMatrix::InnerIterator it(L, col); it; ++it)
-    {
-      if (it.row() != it.col())
-      {
-        largest = std::max(largest, it.value());
-      }
-    }
-  }
-  return largest;
-}
-
-/// max |L - L^T| and max |L 1|, relative to max |L_ii|.
-void CheckStiffness(const SparseMatrix& L, const std::string& what)
-{
-  const double scale = L.diagonal().cwiseAbs().maxCoeff();
-  const SparseMatrix asym = L - SparseMatrix(L.transpose());
-  CheckBelow(asym.coeffs().size() ? asym.coeffs().cwiseAbs().maxCoeff() / scale : 0.0,
-    1e-14,
-    what + ": L symmetric");
-  CheckBelow((L * Vector::Ones(L.rows())).cwiseAbs().maxCoeff() / scale, 1e-12, what + ": L 1 = 0");
-  Check(L.coeffs().allFinite(), what + ": L finite");
-}
-
 /// The icosphere with its points moved at random along the sphere (obtuse and needle triangles).
 TriangleMesh JitteredSphere(int level, double amount, unsigned seed)
 {

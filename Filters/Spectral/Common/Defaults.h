@@ -14,6 +14,9 @@ namespace spectral
 {
 /// The number of harmonics computed when none is asked for.
 constexpr int DefaultNumberOfHarmonics = 100;
+/// The neighbours of each point that the point-cloud Laplacian triangulates (Sharp and Crane's
+/// choice; Operators/PointCloud.h).
+constexpr int DefaultNumberOfNeighbors = 30;
 } // namespace spectral
 
 #endif

@@ -6,7 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -83,6 +84,9 @@ public:
   void Run(const Monitor& monitor);
 
 private:
+  /// Reorders the sides around an edge so that copies of one triangle (same opposite corner)
+  /// are not neighbours in the cyclic order where another triangle can come between them.
+  void InterleaveCopies(std::vector<Side>& sides) const;
   Side& Neighbor(const Side& s) { return this->Glue[3 * s.Face + s.Index]; }
   int Vertex(int f, int c) const { return this->T.Faces(f, c % 3); }
   double Length(int f, int c) const { return this->T.Lengths(f, c % 3); }
@@ -99,33 +103,52 @@ private:
 void Flipper::ConnectTufted()
 {
   const int numFaces = static_cast<int>(this->T.Faces.rows()) / 2;
-  // The input triangles around each undirected edge, with the side that runs along it.
-  std::map<std::pair<int, int>, std::vector<Side>> edges;
+  // The input triangles' sides, sorted by their undirected edge (lower point id in the high
+  // bits), then by face and side: each edge's sides in the order of the input.
+  std::vector<std::pair<std::uint64_t, Side>> sorted;
+  sorted.reserve(static_cast<std::size_t>(numFaces) * 3);
   for (int f = 0; f < numFaces; ++f)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const int i = this->Vertex(f, c);
-      const int j = this->Vertex(f, c + 1);
-      edges[{ std::min(i, j), std::max(i, j) }].push_back({ f, c });
+      const auto i = static_cast<std::uint32_t>(this->Vertex(f, c));
+      const auto j = static_cast<std::uint32_t>(this->Vertex(f, c + 1));
+      sorted.emplace_back((std::uint64_t(std::min(i, j)) << 32) | std::max(i, j), Side{ f, c });
     }
   }
+  std::sort(sorted.begin(),
+    sorted.end(),
+    [](const std::pair<std::uint64_t, Side>& a, const std::pair<std::uint64_t, Side>& b)
+    {
+      return a.first != b.first
+        ? a.first < b.first
+        : (a.second.Face != b.second.Face ? a.second.Face < b.second.Face
+                                          : a.second.Index < b.second.Index);
+    });
   // Around an edge i < j, each triangle has one copy whose side runs i -> j (Up) and one whose
   // side runs j -> i (Down); side c of face f is side 2 - c of its reverse F + f. Gluing the Up
   // side of each triangle to the Down side of the next, cyclically, pairs every side with one
   // running the other way: the cover is an oriented closed surface, whatever the input's
   // orientation, boundary or non-manifold edges (one triangle: its two copies are glued).
-  for (const auto& edge : edges)
+  std::vector<Side> sides, up, down;
+  for (std::size_t first = 0; first < sorted.size();)
   {
-    const std::vector<Side>& sides = edge.second;
+    const std::uint64_t key = sorted[first].first;
+    const int low = static_cast<int>(key >> 32);
+    sides.clear();
+    for (; first < sorted.size() && sorted[first].first == key; ++first)
+    {
+      sides.push_back(sorted[first].second);
+    }
+    this->InterleaveCopies(sides);
     const std::size_t k = sides.size();
-    std::vector<Side> up(k);
-    std::vector<Side> down(k);
+    up.resize(k);
+    down.resize(k);
     for (std::size_t a = 0; a < k; ++a)
     {
       const Side front = sides[a];
       const Side back{ front.Face + numFaces, 2 - front.Index };
-      const bool forward = this->Vertex(front.Face, front.Index) == edge.first.first;
+      const bool forward = this->Vertex(front.Face, front.Index) == low;
       up[a] = forward ? front : back;
       down[a] = forward ? back : front;
     }
@@ -133,6 +156,46 @@ void Flipper::ConnectTufted()
     {
       this->Neighbor(up[a]) = down[(a + 1) % k];
       this->Neighbor(down[(a + 1) % k]) = up[a];
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void Flipper::InterleaveCopies(std::vector<Side>& sides) const
+{
+  // The triangles around the edge (told apart by their opposite corner) in the order of their
+  // first copies, and the copies of each in their order.
+  std::vector<int> opposite;
+  std::vector<std::vector<Side>> copies;
+  for (const Side& s : sides)
+  {
+    const int corner = this->Vertex(s.Face, s.Index + 2);
+    const auto it = std::find(opposite.begin(), opposite.end(), corner);
+    if (it == opposite.end())
+    {
+      opposite.push_back(corner);
+      copies.push_back({ s });
+    }
+    else
+    {
+      copies[static_cast<std::size_t>(it - opposite.begin())].push_back(s);
+    }
+  }
+  if (copies.size() == sides.size())
+  {
+    return; // no copies: the order is kept
+  }
+  // One copy of each triangle per round, always in the same order of triangles.
+  const std::size_t k = sides.size();
+  sides.clear();
+  for (std::size_t round = 0; sides.size() < k; ++round)
+  {
+    for (const std::vector<Side>& group : copies)
+    {
+      if (round < group.size())
+      {
+        sides.push_back(group[round]);
+      }
     }
   }
 }
@@ -338,6 +401,18 @@ IntrinsicTriangulation IntrinsicDelaunay(const TriangleMesh& mesh, const Monitor
   monitor.ThrowIfCancelled();
   flipper.Run(monitor);
   return T;
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::string> IntrinsicDelaunayWarnings(const IntrinsicTriangulation& T)
+{
+  if (T.NonDelaunayEdges == 0)
+  {
+    return {};
+  }
+  return { "Intrinsic Delaunay: " + std::to_string(T.NonDelaunayEdges) +
+    " edges are still not Delaunay after the flip budget; their cotangent weights may be "
+    "negative." };
 }
 
 //------------------------------------------------------------------------------

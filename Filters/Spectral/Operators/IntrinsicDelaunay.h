@@ -16,6 +16,12 @@
  *   even where the input has boundaries, non-manifold edges (three or more triangles) or
  *   inconsistent orientation, so every edge can be flipped. Its operators, halved (Weight), are
  *   the input's: on a mesh that is already intrinsic Delaunay they equal the cotan operators.
+ *   Copies of one triangle in the input (the soup of the point-cloud Laplacian, PointCloud.h)
+ *   take turns with the other triangles around each edge, so that a copy is glued to another
+ *   triangle rather than folded onto its twin where the input allows it: a fold is an edge whose
+ *   two opposite angles are the same angle, flipped whenever that angle is obtuse, and flips
+ *   through folds lower the Dirichlet energy below that of the surface (eigenvalues about 2%
+ *   low on a random sphere cloud, 0.5% with the turns).
  * - intrinsic mollification: the smallest delta is added to every edge length that makes each
  *   triangle satisfy the triangle inequality with a margin of MollificationFactor times the mean
  *   edge length (Mollify), so near-degenerate triangles get finite cotangents.
@@ -33,6 +39,9 @@
 
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
+
+#include <string>
+#include <vector>
 
 namespace spectral
 {
@@ -81,6 +90,12 @@ struct IntrinsicTriangulation
  */
 IntrinsicTriangulation IntrinsicDelaunay(const TriangleMesh& mesh,
   const Monitor& monitor = Monitor());
+
+/**
+ * The sentences for the user about an intrinsic triangulation: the edges that the flip budget
+ * left non-Delaunay (their cotangent weights may be negative); empty when there are none.
+ */
+std::vector<std::string> IntrinsicDelaunayWarnings(const IntrinsicTriangulation& T);
 
 /**
  * The tufted cover of a mesh: its triangles [0, F) and the same triangles reversed [F, 2F)

@@ -19,12 +19,7 @@ void AssembleIntrinsic(const TriangleMesh& mesh,
   DiscreteLaplacian& out)
 {
   const IntrinsicTriangulation T = IntrinsicDelaunay(mesh, monitor);
-  if (T.NonDelaunayEdges > 0)
-  {
-    out.Warnings.push_back("Intrinsic Delaunay: " + std::to_string(T.NonDelaunayEdges) +
-      " edges are still not Delaunay after the flip budget; their cotangent weights may be "
-      "negative.");
-  }
+  out.Warnings = IntrinsicDelaunayWarnings(T);
   out.Stiffness = IntrinsicCotanStiffness(T);
   out.LumpedMass = IntrinsicLumpedMass(T);
   out.Mass = consistent ? IntrinsicConsistentMass(T) : spectral::Diagonal(out.LumpedMass);

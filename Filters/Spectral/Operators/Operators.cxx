@@ -93,10 +93,6 @@ struct CellsOf<4>
   static constexpr const char* Name = "tetrahedron";
 };
 
-/// Largest coordinate magnitude PrepareMesh accepts: squared areas (edge lengths to the fourth
-/// power) stay finite below it.
-constexpr double MaxCoordinate = 1e75;
-
 /**
  * Keeps the first of cells with the same K corners (either orientation): `corners` holds the
  * sorted corners of each cell of `kept`, in the same order; both are reduced to the cells kept,
@@ -181,19 +177,7 @@ void CheckCells(const TriangleMesh& input)
           " refers to point " + std::to_string(id) + " but the mesh has " + std::to_string(numPts) +
           " points");
       }
-      if (!input.Vertices.row(id).allFinite())
-      {
-        throw InvalidInput("point " + std::to_string(id) +
-          " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
-      }
-      const double magnitude = input.Vertices.row(id).cwiseAbs().maxCoeff();
-      if (magnitude > MaxCoordinate)
-      {
-        char value[32];
-        std::snprintf(value, sizeof(value), "%g", magnitude);
-        throw InvalidInput("point " + std::to_string(id) + " has a coordinate of magnitude " +
-          value + ", beyond 1e75 where triangle areas overflow; rescale the mesh");
-      }
+      CheckCoordinates(input.Vertices, id);
     }
   }
 }
@@ -336,6 +320,24 @@ PreparedMesh PrepareMesh(const TriangleMesh& input)
       " tetrahedra: a mesh is a surface or a volume, not both; extract one of them first");
   }
   return input.IsVolume() ? PrepareCells<4>(input) : PrepareCells<3>(input);
+}
+
+//------------------------------------------------------------------------------
+void CheckCoordinates(const Points& points, Eigen::Index id)
+{
+  if (!points.row(id).allFinite())
+  {
+    throw InvalidInput("point " + std::to_string(id) +
+      " has a NaN or infinite coordinate; remove or repair it before computing harmonics");
+  }
+  const double magnitude = points.row(id).cwiseAbs().maxCoeff();
+  if (magnitude > MaxCoordinate)
+  {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%g", magnitude);
+    throw InvalidInput("point " + std::to_string(id) + " has a coordinate of magnitude " + value +
+      ", beyond 1e75 where triangle areas overflow; rescale the mesh");
+  }
 }
 
 //------------------------------------------------------------------------------

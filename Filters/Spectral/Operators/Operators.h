@@ -48,6 +48,17 @@ struct PreparedMesh
   int SmallComponentPoints = 0;
 };
 
+/// Largest coordinate magnitude the operators accept: squared areas (edge lengths to the fourth
+/// power) stay finite below it.
+constexpr double MaxCoordinate = 1e75;
+
+/**
+ * The one check of a point's coordinates, for every kind of input.
+ * \throws InvalidInput if point `id` has a non-finite coordinate or one of magnitude above
+ *         MaxCoordinate.
+ */
+void CheckCoordinates(const Points& points, Eigen::Index id);
+
 /**
  * Relative size below which a cell is degenerate: twice a triangle's area below it times its
  * longest edge squared, six times a tetrahedron's volume below it times its longest edge cubed
@@ -63,9 +74,8 @@ constexpr double DegenerateCellSize = 1e-12;
  *
  * \param input Points and triangles, or points and tetrahedra; indices must lie in [0, #V).
  * \return The compact mesh with the map back to input point ids.
- * \throws InvalidInput for an index out of range, a non-finite coordinate or one of magnitude
- *         above 1e75 (where squared areas overflow) on a used point, or a mesh with both
- *         triangles and tetrahedra.
+ * \throws InvalidInput for an index out of range, a coordinate that CheckCoordinates refuses
+ *         on a used point, or a mesh with both triangles and tetrahedra.
  */
 PreparedMesh PrepareMesh(const TriangleMesh& input);
 
