@@ -249,20 +249,17 @@ void KeepPairs(EigenResult& pairs, int first, int end)
   }
 }
 
+} // anonymous namespace
+
 //------------------------------------------------------------------------------
-// The power of two nearest the diameter of the points (1 for a single point): dividing the
-// coordinates by it is exact, and makes the solve independent of the mesh's units.
-double UnitScale(const Points& points)
+double UnitScale(double diameter)
 {
-  const double diameter = BoundingBoxDiagonal(points);
   if (!(diameter > 0.0) || !std::isfinite(diameter))
   {
     return 1.0;
   }
   return std::ldexp(1.0, std::ilogb(diameter));
 }
-
-} // anonymous namespace
 
 //------------------------------------------------------------------------------
 InsufficientMemory::InsufficientMemory(const MemoryEstimate& needed,
@@ -305,7 +302,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
 
   // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the harmonics
   // (M-normalized, M an area) as 1 / s, the mass as s^2.
-  const double s = UnitScale(prepared.Mesh.Vertices);
+  const double s = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);

@@ -105,6 +105,15 @@ public:
 };
 
 /**
+ * The unit of length the operators are assembled in: the power of two nearest below `diameter`
+ * (the bounding box diagonal of the used points; 1 for 0 or a non-finite value). Dividing the
+ * coordinates by it is exact and makes the solve independent of the mesh's units: lambda scales
+ * as 1 / s^2, M-normalized harmonics as 1 / s, the mass as s^2. ComputeBasis and the distributed
+ * solver of vtkManifoldHarmonicBasis (vtkManifoldHarmonicsSlepc.cxx) both use it.
+ */
+double UnitScale(double diameter);
+
+/**
  * The m smallest eigenpairs of the Laplacian of a triangle mesh.
  * \param mesh Points and triangles (any; what cannot be used is left out with a warning).
  * \param options m, operators, solver settings, memory check.
