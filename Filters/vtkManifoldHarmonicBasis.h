@@ -333,9 +333,9 @@ public:
   /**
    * Choose the eigensolver: BUILT_IN (0) or SLEPC (1). SLEPC needs a build with SLEPc
    * (HasSlepc(); an error otherwise) and supports the COTANGENT Laplacian, both mass matrices,
-   * NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's); BandSize, MemoryLimit,
-   * NumberOfThreads, MinimumComponentSize, EigenvaluesOnly and FrequencyWindow are the built-in
-   * solver's (an error says so when one is set away from its default). Its results equal the
+   * NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's); MinimumComponentSize,
+   * EigenvaluesOnly and FrequencyWindow are refused with an error, and BandSize, MemoryLimit
+   * and NumberOfThreads (the built-in solver's) do not apply. Its results equal the
    * built-in solver's to round-off: the eigenvalues, the spanned subspaces, the filtered points
    * (Testing/ParaView/TestSlepcManifoldHarmonics.py.in, at 1, 2 and 3 processes). The output
    * has the same arrays, and in field data also ManifoldHarmonicsInertiaCount (eigenvalues

@@ -157,9 +157,11 @@ public:
     PetscPushErrorHandler(RecordError, nullptr);
     FirstError().clear();
     MH_PETSC(PetscOptionsCreate(&this->Options));
-    // Inertia of MUMPS in parallel needs ICNTL(13) = 1 (no ScaLAPACK root node). The prefix
-    // st_ is the one of the ST's factorization and of our own inertia probes.
-    MH_PETSC(PetscOptionsInsertString(this->Options, "-st_mat_mumps_icntl_13 1"));
+    // The inertia of MUMPS needs null pivot detection, ICNTL(24) = 1, and in parallel
+    // ICNTL(13) = 1 (no ScaLAPACK root node). The prefix st_ is the one of the ST's
+    // factorization and of our own inertia probes.
+    MH_PETSC(
+      PetscOptionsInsertString(this->Options, "-st_mat_mumps_icntl_13 1 -st_mat_mumps_icntl_24 1"));
     MH_PETSC(PetscOptionsInsertString(this->Options, options.c_str()));
     MH_PETSC(PetscOptionsPush(this->Options));
   }
@@ -414,6 +416,14 @@ Numbering NumberPoints(MPI_Comm comm,
 }
 
 //------------------------------------------------------------------------------
+// Tells PETSc (and so MUMPS) that a matrix is symmetric, for good.
+void MarkSymmetric(Mat matrix)
+{
+  MH_PETSC(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
+  MH_PETSC(MatSetOption(matrix, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+}
+
+//------------------------------------------------------------------------------
 // A distributed AIJ matrix of `local` (a matrix on the piece's used points) added up by global
 // numbers, exactly preallocated (a MATPREALLOCATOR pass over the same entries).
 void AddEntries(Mat matrix, const spectral::SparseMatrix& local, const std::vector<PetscInt>& ids)
@@ -466,6 +476,7 @@ void CreateMatrix(MPI_Comm comm,
   AddEntries(out.Object, local, numbering.Global);
   MH_PETSC(MatAssemblyBegin(out.Object, MAT_FINAL_ASSEMBLY));
   MH_PETSC(MatAssemblyEnd(out.Object, MAT_FINAL_ASSEMBLY));
+  MarkSymmetric(out.Object);
 }
 
 //------------------------------------------------------------------------------
@@ -476,6 +487,7 @@ PetscInt CountBelow(Mat Q, Mat D, double shift)
   OwnedMat shifted;
   MH_PETSC(MatDuplicate(Q, MAT_COPY_VALUES, &shifted.Object));
   MH_PETSC(MatAXPY(shifted.Object, -shift, D, SUBSET_NONZERO_PATTERN));
+  MarkSymmetric(shifted.Object);
   OwnedKSP ksp;
   MH_PETSC(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(Q)), &ksp.Object));
   MH_PETSC(KSPSetOptionsPrefix(ksp.Object, "st_"));
@@ -663,6 +675,7 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     MH_PETSC(MatDiagonalSet(D.Object, lumped.Object, INSERT_VALUES));
     MH_PETSC(MatAssemblyBegin(D.Object, MAT_FINAL_ASSEMBLY));
     MH_PETSC(MatAssemblyEnd(D.Object, MAT_FINAL_ASSEMBLY));
+    MarkSymmetric(D.Object);
   }
   progress(0.05);
 
