@@ -34,6 +34,10 @@
 
 namespace
 {
+// Eigenvalues per spectrum slicing run: the solve checks the abort flag and reports progress
+// between runs. Each run adds the factorizations at its ends.
+constexpr int SliceHarmonics = 200;
+
 //------------------------------------------------------------------------------
 // PETSc errors: the first message of an error (where it arose), recorded by our handler, and
 // turned into an exception with what to change.
@@ -510,42 +514,96 @@ PetscInt CountBelow(Mat Q, Mat D, double shift)
 }
 
 //------------------------------------------------------------------------------
-// The monitor of Krylov-Schur: progress, and the abort flag of every process (an allreduce on
-// the communicator of the EPS that iterates).
-struct MonitorState
+// Whether any process's user cancelled (collective).
+bool AnyCancelled(MPI_Comm comm, const vtkManifoldHarmonicsSlepc::Settings& settings)
 {
-  const vtkManifoldHarmonicsSlepc::Settings* Settings = nullptr;
-  int Expected = 1;
-  bool Cancelled = false;
-  int Calls = 0;
+  int local = settings.Cancelled && settings.Cancelled() ? 1 : 0;
+  int any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+//------------------------------------------------------------------------------
+// The eigenpairs of one interval by Krylov-Schur spectrum slicing (shift-and-invert on MUMPS
+// Cholesky factorizations, ICNTL(13) and (24) from the session's options), ascending.
+struct Slice
+{
+  std::vector<std::pair<double, PetscInt>> Order;
+  /// Eigenvalues in the interval by the inertia at its ends, and the shifts used.
+  PetscInt Count = 0;
+  PetscInt Shifts = 0;
 };
 
-PetscErrorCode Monitor(EPS eps,
-  PetscInt,
-  PetscInt converged,
-  PetscScalar*,
-  PetscScalar*,
-  PetscReal*,
-  PetscInt,
-  void* context)
+Slice SolveSlice(OwnedEPS& eps,
+  Mat Q,
+  Mat D,
+  double lower,
+  double upper,
+  int partitions,
+  const vtkManifoldHarmonicsSlepc::Settings& settings)
 {
-  auto* state = static_cast<MonitorState*>(context);
-  ++state->Calls;
-  int local = state->Settings->Cancelled && state->Settings->Cancelled() ? 1 : 0;
-  int any = 0;
-  MPI_Allreduce(
-    &local, &any, 1, MPI_INT, MPI_MAX, PetscObjectComm(reinterpret_cast<PetscObject>(eps)));
-  if (any)
+  MH_PETSC(EPSCreate(PetscObjectComm(reinterpret_cast<PetscObject>(Q)), &eps.Object));
+  MH_PETSC(EPSSetOperators(eps.Object, Q, D));
+  MH_PETSC(EPSSetProblemType(eps.Object, EPS_GHEP));
+  MH_PETSC(EPSSetType(eps.Object, EPSKRYLOVSCHUR));
+  MH_PETSC(EPSSetWhichEigenpairs(eps.Object, EPS_ALL));
+  MH_PETSC(EPSSetInterval(eps.Object, lower, upper));
+  MH_PETSC(EPSSetTolerances(eps.Object, settings.Tolerance, settings.MaxIterations));
+  ST st;
+  MH_PETSC(EPSGetST(eps.Object, &st));
+  MH_PETSC(STSetType(st, STSINVERT));
+  MH_PETSC(STSetMatStructure(st, SUBSET_NONZERO_PATTERN));
+  KSP ksp;
+  MH_PETSC(STGetKSP(st, &ksp));
+  MH_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PC pc;
+  MH_PETSC(KSPGetPC(ksp, &pc));
+  MH_PETSC(PCSetType(pc, PCCHOLESKY));
+  MH_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  MH_PETSC(PCSetErrorIfFailure(pc, PETSC_TRUE));
+  MH_PETSC(EPSKrylovSchurSetPartitions(eps.Object, partitions));
+  MH_PETSC(EPSSetFromOptions(eps.Object));
+  MH_PETSC(EPSSolve(eps.Object));
+
+  Slice slice;
+  PetscInt converged = 0;
+  MH_PETSC(EPSGetConverged(eps.Object, &converged));
+  PetscReal* at = nullptr;
+  PetscInt* inertias = nullptr;
+  MH_PETSC(EPSKrylovSchurGetInertias(eps.Object, &slice.Shifts, &at, &inertias));
+  PetscInt atLower = 0;
+  PetscInt atUpper = 0;
+  for (PetscInt k = 0; k < slice.Shifts; ++k)
   {
-    state->Cancelled = true;
-    return PETSC_ERR_USER;
+    if (at[k] <= lower)
+    {
+      atLower = inertias[k];
+    }
+    if (at[k] >= upper)
+    {
+      atUpper = inertias[k];
+    }
   }
-  if (state->Settings->Progress)
+  PetscFree(at);
+  PetscFree(inertias);
+  slice.Count = atUpper - atLower;
+  if (slice.Count != converged)
   {
-    state->Settings->Progress(
-      0.2 + 0.6 * std::min(1.0, static_cast<double>(converged) / state->Expected));
+    std::ostringstream text;
+    text << "SLEPc computed " << converged << " eigenpairs in a slice where the inertia counts "
+         << slice.Count << ": raise MaxIterations, or lower Tolerance";
+    throw std::runtime_error(text.str());
   }
-  return 0;
+  slice.Order.resize(static_cast<std::size_t>(converged));
+  for (PetscInt k = 0; k < converged; ++k)
+  {
+    PetscScalar real = 0.0;
+    PetscScalar imaginary = 0.0;
+    MH_PETSC(EPSGetEigenvalue(eps.Object, k, &real, &imaginary));
+    slice.Order[k] = { PetscRealPart(real), k };
+  }
+  std::sort(slice.Order.begin(), slice.Order.end());
+  return slice;
 }
 } // anonymous namespace
 
@@ -697,29 +755,10 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   }
   progress(0.2);
 
-  // The eigensolve: Krylov-Schur spectrum slicing of [lower, upper] with shift-and-invert on
-  // MUMPS Cholesky factorizations.
+  // The eigensolve: [lower, upper] in slices of about SliceHarmonics eigenvalues by Weyl's law,
+  // ascending, until m pairs are found. Between slices, progress and the abort flag (SLEPc's
+  // spectrum slicing calls no monitor).
   stage("Eigensolve");
-  OwnedEPS eps;
-  MH_PETSC(EPSCreate(comm, &eps.Object));
-  MH_PETSC(EPSSetOperators(eps.Object, Q.Object, D.Object));
-  MH_PETSC(EPSSetProblemType(eps.Object, EPS_GHEP));
-  MH_PETSC(EPSSetType(eps.Object, EPSKRYLOVSCHUR));
-  MH_PETSC(EPSSetWhichEigenpairs(eps.Object, EPS_ALL));
-  MH_PETSC(EPSSetInterval(eps.Object, lower, upper));
-  MH_PETSC(EPSSetTolerances(eps.Object, settings.Tolerance, settings.MaxIterations));
-  ST st;
-  MH_PETSC(EPSGetST(eps.Object, &st));
-  MH_PETSC(STSetType(st, STSINVERT));
-  MH_PETSC(STSetMatStructure(st, SUBSET_NONZERO_PATTERN));
-  KSP ksp;
-  MH_PETSC(STGetKSP(st, &ksp));
-  MH_PETSC(KSPSetType(ksp, KSPPREONLY));
-  PC pc;
-  MH_PETSC(KSPGetPC(ksp, &pc));
-  MH_PETSC(PCSetType(pc, PCCHOLESKY));
-  MH_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  MH_PETSC(PCSetErrorIfFailure(pc, PETSC_TRUE));
   int partitions = std::max(1, settings.Partitions);
   if (partitions > size)
   {
@@ -727,85 +766,48 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
       std::to_string(size) + " processes of the run.");
     partitions = size;
   }
-  MH_PETSC(EPSKrylovSchurSetPartitions(eps.Object, partitions));
-  MonitorState monitor;
-  monitor.Settings = &settings;
-  monitor.Expected = std::max<int>(1, static_cast<int>(below));
-  MH_PETSC(EPSMonitorSet(eps.Object, Monitor, &monitor, nullptr));
-  MH_PETSC(EPSSetFromOptions(eps.Object));
-  const PetscErrorCode solved = EPSSolve(eps.Object);
-  if (monitor.Cancelled)
-  {
-    FirstError().clear();
-    throw vtkManifoldHarmonicsSlepc::Cancelled();
-  }
-  if (solved != 0)
-  {
-    Fail(solved, "EPSSolve");
-  }
-  PetscInt converged = 0;
-  MH_PETSC(EPSGetConverged(eps.Object, &converged));
-  result.Computed = static_cast<int>(converged);
-  {
-    PetscInt shifts = 0;
-    PetscReal* at = nullptr;
-    PetscInt* inertias = nullptr;
-    MH_PETSC(EPSKrylovSchurGetInertias(eps.Object, &shifts, &at, &inertias));
-    result.Shifts = static_cast<int>(shifts);
-    PetscInt atLower = 0;
-    PetscInt atUpper = below;
-    for (PetscInt k = 0; k < shifts; ++k)
-    {
-      if (at[k] <= lower)
-      {
-        atLower = inertias[k];
-      }
-      if (at[k] >= upper)
-      {
-        atUpper = inertias[k];
-      }
-    }
-    PetscFree(at);
-    PetscFree(inertias);
-    result.InertiaCount = static_cast<int>(atUpper - atLower);
-  }
-  if (converged < m || result.InertiaCount != converged)
-  {
-    throw std::runtime_error("SLEPc computed " + std::to_string(converged) + " eigenpairs in [" +
-      std::to_string(lower / (s * s)) + ", " + std::to_string(upper / (s * s)) +
-      "], where the inertia counts " + std::to_string(result.InertiaCount) + " (" +
-      std::to_string(m) + " needed): raise MaxIterations or Tolerance");
-  }
-
-  // The m smallest, D-normalized, in storage of our own (one column per pair, owned rows).
-  std::vector<std::pair<double, PetscInt>> order(static_cast<std::size_t>(converged));
-  for (PetscInt k = 0; k < converged; ++k)
-  {
-    PetscScalar real = 0.0;
-    PetscScalar imaginary = 0.0;
-    MH_PETSC(EPSGetEigenvalue(eps.Object, k, &real, &imaginary));
-    order[k] = { PetscRealPart(real), k };
-  }
-  std::sort(order.begin(), order.end());
+  const int slices = std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics);
   const PetscInt owned = numbering.OwnedCount;
   spectral::DenseMatrix X(owned, m);
   spectral::Vector lambda(m);
   std::vector<OwnedVec> columns(static_cast<std::size_t>(m));
   OwnedVec work;
   MH_PETSC(MatCreateVecs(Q.Object, &work.Object, nullptr));
-  for (int k = 0; k < m; ++k)
+  int found = 0;
+  for (int j = 0; j < slices && found < m; ++j)
   {
-    lambda[k] = order[k].first;
-    MH_PETSC(
-      VecCreateMPIWithArray(comm, 1, owned, numbering.Total, X.col(k).data(), &columns[k].Object));
-    MH_PETSC(EPSGetEigenvector(eps.Object, order[k].second, columns[k].Object, nullptr));
-    MH_PETSC(MatMult(D.Object, columns[k].Object, work.Object));
-    PetscScalar norm2 = 0.0;
-    MH_PETSC(VecDot(columns[k].Object, work.Object, &norm2));
-    MH_PETSC(VecScale(columns[k].Object, 1.0 / std::sqrt(PetscRealPart(norm2))));
+    if (AnyCancelled(comm, settings))
+    {
+      throw vtkManifoldHarmonicsSlepc::Cancelled();
+    }
+    const double from = j == 0 ? lower : upper * j / slices;
+    const double to = upper * (j + 1) / slices;
+    OwnedEPS eps;
+    const Slice slice = SolveSlice(eps, Q.Object, D.Object, from, to, partitions, settings);
+    result.InertiaCount += static_cast<int>(slice.Count);
+    result.Computed += static_cast<int>(slice.Order.size());
+    result.Shifts += static_cast<int>(slice.Shifts);
+    // The smallest, D-normalized, in storage of our own (one column per pair, owned rows).
+    for (std::size_t i = 0; i < slice.Order.size() && found < m; ++i, ++found)
+    {
+      lambda[found] = slice.Order[i].first;
+      MH_PETSC(VecCreateMPIWithArray(
+        comm, 1, owned, numbering.Total, X.col(found).data(), &columns[found].Object));
+      MH_PETSC(
+        EPSGetEigenvector(eps.Object, slice.Order[i].second, columns[found].Object, nullptr));
+      MH_PETSC(MatMult(D.Object, columns[found].Object, work.Object));
+      PetscScalar norm2 = 0.0;
+      MH_PETSC(VecDot(columns[found].Object, work.Object, &norm2));
+      MH_PETSC(VecScale(columns[found].Object, 1.0 / std::sqrt(PetscRealPart(norm2))));
+    }
+    progress(0.2 + 0.65 * (j + 1) / slices);
   }
-  // The eigensolver's own vectors and factorizations are not needed any more.
-  EPSDestroy(&eps.Object);
+  if (found < m)
+  {
+    throw std::runtime_error("SLEPc found " + std::to_string(found) + " eigenpairs below " +
+      std::to_string(upper / (s * s)) + ", where the inertia counts " + std::to_string(below) +
+      " (" + std::to_string(m) + " needed)");
+  }
   progress(0.85);
 
   // 4. Checks: D-orthonormality, relative residuals and componentwise backward errors, with

@@ -21,13 +21,16 @@
  *    its own triangles with the core's formulas (Operators.h), in units of spectral::UnitScale
  *    of the global diameter, and adds them into distributed PETSc AIJ matrices by global number
  *    (MatSetValues ADD_VALUES; PETSc sends the rows of other processes at assembly).
- * 3. Eigensolve. The interval [a, b] with a = -pi / area (half the mean eigenvalue gap by
+ * 3. Eigensolve. The interval [a, b] with a = -2 pi / area (half the mean eigenvalue gap by
  *    Weyl's law, below the zero eigenvalue of the singular stiffness) and b from Weyl's law
  *    lambda_m ~ 4 pi m / area, widened until the inertia of a MUMPS LDL^T factorization of
- *    Q - b D counts at least m eigenvalues below b. SLEPc's Krylov-Schur then computes every
- *    eigenpair in [a, b] by spectrum slicing (shift-and-invert, MUMPS Cholesky with inertia,
- *    ICNTL(13) = 1; npart sub-intervals solved by groups of processes at once); the m smallest
- *    are kept and D-normalized.
+ *    Q - b D counts at least m eigenvalues below b. SLEPc's Krylov-Schur computes every
+ *    eigenpair of [a, b] by spectrum slicing (shift-and-invert, MUMPS Cholesky with inertia,
+ *    ICNTL(13) = 1 and ICNTL(24) = 1; npart sub-intervals solved by groups of processes at
+ *    once), in slices of about 200 eigenvalues, ascending, until m pairs are found: between
+ *    slices the abort flag is polled (on every process) and progress reported, since spectrum
+ *    slicing calls no monitor. In each slice the inertia at its ends must count the pairs SLEPc
+ *    returned. The m smallest are kept and D-normalized.
  * 4. Checks, distributed (PETSc Mat and Vec operations): D-orthonormality, relative residuals
  *    and componentwise backward errors (the core's definitions and tolerances, Verification.h).
  *    A pair above both tolerances is an error.
