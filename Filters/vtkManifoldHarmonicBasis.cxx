@@ -31,6 +31,10 @@
 
 #include "Spectral/Basis.h"
 
+#ifdef MANIFOLDHARMONICS_HAS_SLEPC
+#include "vtkManifoldHarmonicsSlepc.h"
+#endif
+
 #include <algorithm>
 #include <cstdint>
 #include <iomanip>
@@ -329,9 +333,21 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , MinimumComponentSize(0)
   , NumberOfThreads(0)
   , EigenvaluesOnly(false)
+  , Solver(BUILT_IN)
+  , SlepcPartitions(1)
 {
   this->FrequencyWindow[0] = 0.0;
   this->FrequencyWindow[1] = 0.0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkManifoldHarmonicBasis::HasSlepc()
+{
+#ifdef MANIFOLDHARMONICS_HAS_SLEPC
+  return true;
+#else
+  return false;
+#endif
 }
 
 //------------------------------------------------------------------------------
@@ -359,6 +375,22 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
 {
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPointSet* output = vtkPointSet::GetData(outputVector);
+  if (this->Solver == SLEPC)
+  {
+    // Every process takes part, with or without triangles. Surfaces in vtkPolyData only, so far
+    // (the same input type on every process, so every process refuses alike).
+    vtkPolyData* surfaceInput = vtkPolyData::SafeDownCast(input);
+    vtkPolyData* surfaceOutput = vtkPolyData::SafeDownCast(output);
+    if (!surfaceInput || !surfaceOutput)
+    {
+      vtkErrorMacro(<< "The SLEPc solver takes surfaces in a vtkPolyData only so far, not a "
+                    << input->GetClassName()
+                    << ": choose the Built-in solver, or extract the surface first.");
+      output->Initialize();
+      return 0;
+    }
+    return this->ComputeSlepcBasis(surfaceInput, surfaceOutput);
+  }
   vtkPolyData* surface = vtkPolyData::SafeDownCast(input);
   const bool hasSurface = surface && surface->GetNumberOfPolys() + surface->GetNumberOfStrips() > 0;
   if (vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController())
@@ -447,6 +479,100 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   }
   ::AddPieceArrays(output, input, rows, this->BasisPrecision == FLOAT);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPolyData* input, vtkPolyData* output)
+{
+  output->Initialize();
+  // The settings the SLEPc solver does not have, refused alike on every process before any
+  // collective step.
+  std::string unsupported;
+  if (this->Laplacian != COTANGENT)
+  {
+    unsupported = "Laplacian Intrinsic Delaunay";
+  }
+  else if (this->EigenvaluesOnly)
+  {
+    unsupported = "EigenvaluesOnly";
+  }
+  else if (this->FrequencyWindow[1] > 0.0)
+  {
+    unsupported = "FrequencyWindow";
+  }
+  else if (this->MinimumComponentSize > 0)
+  {
+    unsupported = "MinimumComponentSize";
+  }
+  else if (this->BoundaryCondition != NEUMANN)
+  {
+    unsupported = "BoundaryCondition Dirichlet";
+  }
+  if (!unsupported.empty())
+  {
+    vtkErrorMacro(<< "The SLEPc solver does not support " << unsupported
+                  << " yet: choose the Built-in solver, or leave it at its default.");
+    return 0;
+  }
+#ifdef MANIFOLDHARMONICS_HAS_SLEPC
+  vtkManifoldHarmonicsSlepc::Settings settings;
+  settings.NumberOfHarmonics = this->NumberOfHarmonics;
+  settings.ConsistentMass = this->MassMatrix == CONSISTENT;
+  settings.Partitions = this->SlepcPartitions;
+  settings.Options = this->SlepcOptions;
+  settings.Tolerance = this->Tolerance;
+  settings.MaxIterations = this->MaxIterations;
+  settings.Progress = [this](double fraction) { this->UpdateProgress(0.95 * fraction); };
+  settings.Stage = [this](const char* stage) { this->SetProgressText(stage); };
+  settings.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
+  settings.Warning = [this](const std::string& text) { vtkWarningMacro(<< text); };
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  try
+  {
+    vtkSmartPointer<vtkPolyData> piece = input;
+    if (hasSurface)
+    {
+      piece = ::Triangulate(this, input);
+    }
+    const vtkManifoldHarmonicsSlepc::Result result =
+      vtkManifoldHarmonicsSlepc::Solve(controller, piece, settings);
+    ::AddPieceArrays(output, input, result.Rows, this->BasisPrecision == FLOAT);
+    for (const auto& figure :
+      { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
+        std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual),
+        std::make_pair(vtkManifoldHarmonicsNames::OrthonormalityError, result.OrthonormalityError),
+        std::make_pair(
+          vtkManifoldHarmonicsNames::InertiaCount, static_cast<double>(result.InertiaCount)) })
+    {
+      vtkNew<vtkDoubleArray> array;
+      array->SetName(figure.first);
+      array->InsertNextValue(figure.second);
+      output->GetFieldData()->AddArray(array);
+    }
+    vtkDebugMacro(<< "SLEPc: " << result.GlobalPoints << " points, " << result.OwnedPoints
+                  << " owned here, " << result.Computed << " pairs in [0, " << result.UpperEnd
+                  << "), " << result.Shifts << " shifts");
+    this->UpdateProgress(1.0);
+    return 1;
+  }
+  catch (const vtkManifoldHarmonicsSlepc::Cancelled&)
+  {
+    output->Initialize();
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "The SLEPc solver failed: " << e.what());
+  }
+  output->Initialize();
+  return 0;
+#else
+  (void)input;
+  vtkErrorMacro(<< "This build of the module has no SLEPc solver (SLEPc was not found when it "
+                   "was built): choose the Built-in solver, or rebuild with libslepc-real-dev.");
+  return 0;
+#endif
 }
 
 //------------------------------------------------------------------------------
@@ -566,6 +692,10 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Number Of Threads: " << this->NumberOfThreads << " (default 0, every core)\n";
   os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off")
      << " (default off)\n";
+  os << indent << "Solver: " << (this->Solver == SLEPC ? "SLEPc" : "Built-in")
+     << " (default Built-in)\n";
+  os << indent << "Slepc Partitions: " << this->SlepcPartitions << " (default 1)\n";
+  os << indent << "Slepc Options: \"" << this->SlepcOptions << "\" (default none)\n";
   os << indent << "Frequency Window: [" << this->FrequencyWindow[0] << ", "
      << this->FrequencyWindow[1] << ") (default [0, 0): off)\n";
 }

@@ -105,6 +105,8 @@
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPointSetAlgorithm.h"
 
+#include <string> // For SlepcOptions
+
 class vtkMultiProcessController;
 class vtkPointSet;
 class vtkPolyData;
@@ -356,6 +358,69 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  /**
+   * The eigensolver. BUILT_IN: the module's own (band-by-band shift-invert block Lanczos on
+   * CHOLMOD, every option of this filter); in a distributed run, process 0 gathers the surface
+   * and solves alone. SLEPC: SLEPc's Krylov-Schur spectrum slicing on PETSc matrices with MUMPS
+   * factorizations, distributed over the MPI processes of the run: each assembles the operators
+   * of its own piece, nothing is gathered, and each keeps the rows of its own points (also
+   * used in a serial run, on one process). Available when the module is built with SLEPc
+   * (HasSlepc()). The one declaration of these values: vtkManifoldHarmonicSmoothing uses them.
+   */
+  enum SolverType
+  {
+    BUILT_IN = 0,
+    SLEPC = 1
+  };
+
+  ///@{
+  /**
+   * Choose the eigensolver: BUILT_IN (0) or SLEPC (1). SLEPC needs a build with SLEPc
+   * (HasSlepc(); an error otherwise) and supports the COTANGENT Laplacian, both mass matrices,
+   * NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's); MinimumComponentSize,
+   * EigenvaluesOnly and FrequencyWindow are refused with an error, and BandSize, MemoryLimit
+   * and NumberOfThreads (the built-in solver's) do not apply. Its results equal the
+   * built-in solver's to round-off: the eigenvalues, the spanned subspaces, the filtered points
+   * (Testing/ParaView/TestSlepcManifoldHarmonics.py.in, at 1, 2 and 3 processes). The output
+   * has the same arrays, and in field data also ManifoldHarmonicsInertiaCount (eigenvalues
+   * SLEPc's interval holds, counted by the inertia of a MUMPS factorization) and
+   * ManifoldHarmonicsOrthonormalityError. Default is BUILT_IN.
+   */
+  vtkSetClampMacro(Solver, int, BUILT_IN, SLEPC);
+  vtkGetMacro(Solver, int);
+  void SetSolverToBuiltIn() { this->SetSolver(BUILT_IN); }
+  void SetSolverToSlepc() { this->SetSolver(SLEPC); }
+  ///@}
+
+  /**
+   * Whether this build of the module has the SLEPC solver (CMake found SLEPc through
+   * pkg-config).
+   */
+  static bool HasSlepc();
+
+  ///@{
+  /**
+   * SLEPc's npart (EPSKrylovSchurSetPartitions): the spectrum slicing interval is cut into this
+   * many sub-intervals, each solved at once by a group of processes. More partitions run more
+   * factorizations at once, each on fewer processes (more memory per process). Clamped to the
+   * number of processes (with a warning). SLEPC only. Range [1, VTK_INT_MAX]. Default is 1.
+   */
+  vtkSetClampMacro(SlepcPartitions, int, 1, VTK_INT_MAX);
+  vtkGetMacro(SlepcPartitions, int);
+  ///@}
+
+  ///@{
+  /**
+   * Options for SLEPc, PETSc and MUMPS, for experts, in the syntax of PETSc's options database
+   * (PetscOptionsInsertString), applied after the solver's own settings and for this filter's
+   * solve only; e.g. "-st_mat_mumps_icntl_14 50" (more MUMPS workspace) or
+   * "-eps_krylovschur_nev 60" (pairs per shift). The solver's factorization has the prefix
+   * st_. SLEPC only. Default is "" (none).
+   */
+  vtkSetStdStringFromCharMacro(SlepcOptions);
+  vtkGetCharFromStdStringMacro(SlepcOptions);
+  ///@}
+
   ///@{
   /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
@@ -381,6 +446,12 @@ protected:
   int ComputeBasis(vtkPointSet* input, vtkPointSet* output);
 
   /**
+   * The SLEPC solver: every process solves with the others on its own piece (collective; a
+   * serial run is one process). Errors and cancels alike on every process.
+   */
+  int ComputeSlepcBasis(vtkPolyData* input, vtkPolyData* output);
+
+  /**
    * Distributed run (MPI, several processes hold triangles): gather and merge the pieces on
    * process 0, solve there, give every process the rows of its points. Collective.
    */
@@ -401,6 +472,9 @@ protected:
   int NumberOfThreads;
   bool EigenvaluesOnly;
   double FrequencyWindow[2];
+  int Solver;
+  int SlepcPartitions;
+  std::string SlepcOptions;
 
 private:
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;

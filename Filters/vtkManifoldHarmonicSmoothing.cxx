@@ -66,6 +66,8 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
   , NumberOfThreads(0)
   , BoundaryCondition(vtkManifoldHarmonicBasis::NEUMANN)
+  , Solver(vtkManifoldHarmonicBasis::BUILT_IN)
+  , SlepcPartitions(1)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
   , Filter(vtkSmartPointer<vtkSpectralFilter>::New())
@@ -139,6 +141,9 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->SetBasisPrecision(this->BasisPrecision);
   this->Basis->SetNumberOfThreads(this->NumberOfThreads);
   this->Basis->SetBoundaryCondition(this->BoundaryCondition);
+  this->Basis->SetSolver(this->Solver);
+  this->Basis->SetSlepcPartitions(this->SlepcPartitions);
+  this->Basis->SetSlepcOptions(this->SlepcOptions.c_str());
   // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
   this->Basis->SetAbortExecute(this->GetAbortExecute());
   this->Basis->Update();
@@ -216,4 +221,9 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
      << (this->BasisPrecision == vtkManifoldHarmonicBasis::FLOAT ? "Float" : "Double")
      << " (default Double)\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
+  os << indent
+     << "Solver: " << (this->Solver == vtkManifoldHarmonicBasis::SLEPC ? "SLEPc" : "Built-in")
+     << " (default Built-in)\n";
+  os << indent << "SlepcPartitions: " << this->SlepcPartitions << " (default 1)\n";
+  os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\" (default none)\n";
 }

@@ -33,6 +33,9 @@
  *   basis; FLOAT halves its memory and changes the smoothed points by float round-off only.
  * - NumberOfThreads (default 0, all cores): the threads of the eigensolve and of the transform
  *   and filter stages.
+ * - Solver (default vtkManifoldHarmonicBasis::BUILT_IN), SlepcPartitions (default 1) and
+ *   SlepcOptions (default none): the eigensolver of the basis and its settings (see
+ *   vtkManifoldHarmonicBasis::SetSolver); SLEPC solves distributed over the MPI processes.
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
@@ -55,6 +58,8 @@
 #include "vtkPointSetAlgorithm.h"
 #include "vtkSmartPointer.h" // For the internal pipeline
 #include "vtkWeakPointer.h"  // For the internal pipeline
+
+#include <string> // For SlepcOptions
 
 class vtkManifoldHarmonicTransform;
 class vtkPointSet;
@@ -137,6 +142,32 @@ public:
   vtkGetMacro(BoundaryCondition, int);
   ///@}
 
+  ///@{
+  /**
+   * The eigensolver of the internal basis, one of vtkManifoldHarmonicBasis' SolverType values
+   * (declared there only): vtkManifoldHarmonicBasis::BUILT_IN or vtkManifoldHarmonicBasis::SLEPC
+   * (needs vtkManifoldHarmonicBasis::HasSlepc()). Default is vtkManifoldHarmonicBasis::BUILT_IN.
+   */
+  vtkSetClampMacro(Solver,
+    int,
+    vtkManifoldHarmonicBasis::BUILT_IN,
+    vtkManifoldHarmonicBasis::SLEPC);
+  vtkGetMacro(Solver, int);
+  void SetSolverToBuiltIn() { this->SetSolver(vtkManifoldHarmonicBasis::BUILT_IN); }
+  void SetSolverToSlepc() { this->SetSolver(vtkManifoldHarmonicBasis::SLEPC); }
+  ///@}
+
+  ///@{
+  /**
+   * SLEPc's partitions and options of the internal basis (SLEPC only): see
+   * vtkManifoldHarmonicBasis::SetSlepcPartitions and SetSlepcOptions. Defaults are 1 and "".
+   */
+  vtkSetClampMacro(SlepcPartitions, int, 1, VTK_INT_MAX);
+  vtkGetMacro(SlepcPartitions, int);
+  vtkSetStdStringFromCharMacro(SlepcOptions);
+  vtkGetCharFromStdStringMacro(SlepcOptions);
+  ///@}
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
@@ -150,6 +181,9 @@ protected:
   int BasisPrecision;
   int NumberOfThreads;
   int BoundaryCondition;
+  int Solver;
+  int SlepcPartitions;
+  std::string SlepcOptions;
 
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.

@@ -27,6 +27,11 @@ constexpr const char* Eigenvalues = "ManifoldHarmonicsEigenvalues";
 /// spectral::RelativeResiduals).
 constexpr const char* BackwardError = "ManifoldHarmonicsBackwardError";
 constexpr const char* Residual = "ManifoldHarmonicsResidual";
+/// Field data of vtkManifoldHarmonicBasis with the SLEPc solver: one value each, the number of
+/// eigenvalues in SLEPc's interval by the inertia of MUMPS factorizations at its ends, and
+/// max |H^T M H - I|.
+constexpr const char* InertiaCount = "ManifoldHarmonicsInertiaCount";
+constexpr const char* OrthonormalityError = "ManifoldHarmonicsOrthonormalityError";
 
 /// The signal name of the point coordinates (hence `Points_Coefficients`).
 constexpr const char* Points = "Points";

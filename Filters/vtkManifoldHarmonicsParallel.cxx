@@ -321,16 +321,15 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
     }
   }
 
-  // Merge within a tiny tolerance (1e-12 of the bounding box diagonal), not exactly: pieces
-  // may compute a shared seam point differently (a sphere's 0 and 360 degree meridians differ
-  // by 1e-16 in sin(2 pi)). The first piece holding a point gives its coordinates.
+  // Merge within SeamTolerance of the bounding box diagonal, not exactly. The first piece
+  // holding a point gives its coordinates.
   vtkNew<vtkPoints> mergedPoints;
   mergedPoints->SetDataTypeToDouble();
   vtkNew<vtkPointLocator> merger;
   const double diagonal = std::sqrt(
     vtkMath::Distance2BetweenPoints(std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
       std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
-  merger->SetTolerance(1e-12 * std::max(diagonal, 1e-300));
+  merger->SetTolerance(vtkManifoldHarmonicsParallel::SeamTolerance * std::max(diagonal, 1e-300));
   merger->InitPointInsertion(mergedPoints, bounds);
   vtkNew<vtkCellArray> mergedTriangles;
   merged.PointMaps.resize(size);

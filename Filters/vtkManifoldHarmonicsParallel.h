@@ -35,6 +35,11 @@ class vtkUnsignedCharArray;
 
 namespace vtkManifoldHarmonicsParallel
 {
+/// Seam points of different pieces within this fraction of the bounding box diagonal are one
+/// point (pieces may compute a shared point differently: a sphere's 0 and 360 degree meridians
+/// differ by 1e-16 in sin(2 pi)). Used by GatherAndMerge and the SLEPc solver's numbering.
+constexpr double SeamTolerance = 1e-12;
+
 /// The global controller when it has more than one process, otherwise nullptr (serial run).
 vtkMultiProcessController* DistributedController();
 

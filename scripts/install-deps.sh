@@ -22,6 +22,10 @@ packages=(
   libqt5svg5
   mpi-default-bin
   mpi-default-dev
+  # The optional SLEPc solver (pulls libpetsc-real3.18-dev with MUMPS) and pkg-config, which
+  # finds it.
+  libslepc-real-dev
+  pkg-config
   python3-scipy
   python3-numpy
   libutfcpp-dev

@@ -251,19 +251,17 @@ std::pair<int, int> WindowCounts(const DiscreteLaplacian& ops,
 }
 
 //------------------------------------------------------------------------------
-// The power of two nearest the diameter of the points (1 for a single point): dividing the
-// coordinates by it is exact, and makes the solve independent of the mesh's units.
-double UnitScale(const Points& points)
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+double UnitScale(double diameter)
 {
-  const double diameter = BoundingBoxDiagonal(points);
   if (!(diameter > 0.0) || !std::isfinite(diameter))
   {
     return 1.0;
   }
   return std::ldexp(1.0, std::ilogb(diameter));
 }
-
-} // anonymous namespace
 
 //------------------------------------------------------------------------------
 InsufficientMemory::InsufficientMemory(const MemoryEstimate& needed,
@@ -310,7 +308,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
 
   // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an area
   // or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
-  const double s = UnitScale(prepared.Mesh.Vertices);
+  const double s = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
   prepared.Mesh.Vertices /= s;
   DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
   Report(ops.Warnings, monitor, result);

@@ -113,6 +113,16 @@ public:
 };
 
 /**
+ * The unit of length the operators are assembled in: the power of two nearest below `diameter`
+ * (the bounding box diagonal of the used points; 1 for 0 or a non-finite value). Dividing the
+ * coordinates by it is exact and makes the solve independent of the mesh's units: lambda scales
+ * as 1 / s^2, the mass (an area or a volume) as s^d, M-normalized harmonics as s^(-d/2).
+ * ComputeBasis and the distributed
+ * solver of vtkManifoldHarmonicBasis (vtkManifoldHarmonicsSlepc.cxx) both use it.
+ */
+double UnitScale(double diameter);
+
+/**
  * The m smallest eigenpairs of the Laplacian of a triangle or tetrahedral mesh.
  * \param mesh Points and triangles, or points and tetrahedra (any; what cannot be used is left
  *        out with a warning).

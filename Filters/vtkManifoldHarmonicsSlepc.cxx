@@ -1,0 +1,1018 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkManifoldHarmonicsSlepc.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkPointLocator.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "Spectral/Basis.h"
+#include "Spectral/Common/Eigenvalues.h"
+#include "Spectral/Operators/Operators.h"
+#include "Spectral/Solver/EigenSolver.h"
+#include "Spectral/Solver/Verification.h"
+
+#include <slepceps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+namespace
+{
+// Eigenvalues per spectrum slicing run: the solve checks the abort flag and reports progress
+// between runs. Each run adds the factorizations at its ends.
+constexpr int SliceHarmonics = 200;
+
+//------------------------------------------------------------------------------
+// PETSc errors: the first message of an error (where it arose), recorded by our handler, and
+// turned into an exception with what to change.
+std::string& FirstError()
+{
+  static thread_local std::string message;
+  return message;
+}
+
+PetscErrorCode RecordError(MPI_Comm,
+  int,
+  const char* function,
+  const char*,
+  PetscErrorCode code,
+  PetscErrorType type,
+  const char* message,
+  void*)
+{
+  if (type == PETSC_ERROR_INITIAL && FirstError().empty())
+  {
+    FirstError() =
+      std::string(message ? message : "") + " (in " + (function ? function : "?") + ")";
+  }
+  return code;
+}
+
+// What to change for the MUMPS errors a user can do something about (MUMPS users' guide,
+// section "Error diagnostics").
+std::string Advice(const std::string& message)
+{
+  for (const char* code : { "INFOG(1)=-8",
+         "INFOG(1)=-9",
+         "INFOG(1)=-11",
+         "INFOG(1)=-14",
+         "INFOG(1)=-15",
+         "INFOG(1)=-17",
+         "INFOG(1)=-20" })
+  {
+    if (message.find(code) != std::string::npos)
+    {
+      return " MUMPS's estimated workspace was too small: increase it with SlepcOptions "
+             "\"-st_mat_mumps_icntl_14 100\" (percent of extra workspace; MUMPS's default is "
+             "20, raise further if it fails again).";
+    }
+  }
+  if (message.find("INFOG(1)=-13") != std::string::npos)
+  {
+    return " MUMPS could not allocate its factor: run on more nodes (more memory), or compute "
+           "fewer harmonics.";
+  }
+  if (message.find("INFOG(1)=-38") != std::string::npos)
+  {
+    return " The parallel ordering of this MUMPS build failed: use the sequential one, "
+           "SlepcOptions \"-st_mat_mumps_icntl_28 1\".";
+  }
+  if (message.find("INFOG(1)=-10") != std::string::npos)
+  {
+    return " A shift fell on an eigenvalue (singular factorization): change NumberOfHarmonics "
+           "by one, or pass \"-eps_krylovschur_partitions\" differently.";
+  }
+  return "";
+}
+
+[[noreturn]] void Fail(PetscErrorCode code, const char* call)
+{
+  std::string message = FirstError();
+  FirstError().clear();
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  std::ostringstream out;
+  out << "SLEPc/PETSc error " << code << " (" << (text ? text : "unknown") << ") in " << call;
+  if (!message.empty())
+  {
+    out << ": " << message << ".";
+  }
+  out << Advice(message);
+  throw std::runtime_error(out.str());
+}
+
+#define MH_PETSC(call)                                                                             \
+  do                                                                                               \
+  {                                                                                                \
+    const PetscErrorCode mhCode = (call);                                                          \
+    if (mhCode != 0)                                                                               \
+    {                                                                                              \
+      Fail(mhCode, #call);                                                                         \
+    }                                                                                              \
+  } while (false)
+
+// A PETSc object destroyed at the end of its scope.
+template<typename T, PetscErrorCode (*Destroy)(T*)>
+struct Owned
+{
+  T Object = nullptr;
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned()
+  {
+    if (this->Object)
+    {
+      Destroy(&this->Object);
+    }
+  }
+};
+using OwnedMat = Owned<Mat, MatDestroy>;
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedKSP = Owned<KSP, KSPDestroy>;
+using OwnedEPS = Owned<EPS, EPSDestroy>;
+using OwnedIS = Owned<IS, ISDestroy>;
+using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
+
+// For the duration of a solve: our error handler (no tracebacks printed, the message kept) and
+// an options database of our own (the solver's settings and the user's), so that nothing leaks
+// into later solves or other PETSc users of the process.
+class Session
+{
+public:
+  explicit Session(const std::string& options)
+  {
+    PetscPushErrorHandler(RecordError, nullptr);
+    FirstError().clear();
+    MH_PETSC(PetscOptionsCreate(&this->Options));
+    // The inertia of MUMPS needs null pivot detection, ICNTL(24) = 1, and in parallel
+    // ICNTL(13) = 1 (no ScaLAPACK root node). The prefix st_ is the one of the ST's
+    // factorization and of our own inertia probes.
+    MH_PETSC(
+      PetscOptionsInsertString(this->Options, "-st_mat_mumps_icntl_13 1 -st_mat_mumps_icntl_24 1"));
+    MH_PETSC(PetscOptionsInsertString(this->Options, options.c_str()));
+    MH_PETSC(PetscOptionsPush(this->Options));
+  }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  ~Session()
+  {
+    PetscOptionsPop();
+    PetscOptionsDestroy(&this->Options);
+    PetscPopErrorHandler();
+  }
+
+private:
+  PetscOptions Options = nullptr;
+};
+
+//------------------------------------------------------------------------------
+// SLEPc (and PETSc, and MPI when nobody initialized it) once per process.
+void Initialize()
+{
+  PetscBool initialized = PETSC_FALSE;
+  SlepcInitialized(&initialized);
+  if (initialized)
+  {
+    return;
+  }
+  int mpi = 0;
+  MPI_Initialized(&mpi);
+  if (SlepcInitializeNoArguments() != 0)
+  {
+    throw std::runtime_error("SLEPc could not be initialized.");
+  }
+  // The host application (ParaView) handles signals itself.
+  PetscPopSignalHandler();
+  if (!mpi)
+  {
+    // SLEPc initialized MPI: finalize both at exit. When the application initialized MPI it
+    // also finalizes it, and SLEPc stays initialized to the end (finalizing it after MPI fails).
+    std::atexit([]() { SlepcFinalize(); });
+  }
+}
+
+//------------------------------------------------------------------------------
+// The triangles of a piece that are not ghost cells, in the core's form.
+spectral::TriangleMesh LocalTriangles(vtkPolyData* piece)
+{
+  spectral::TriangleMesh mesh;
+  if (!piece || piece->GetNumberOfPoints() == 0)
+  {
+    return mesh;
+  }
+  const vtkIdType n = piece->GetNumberOfPoints();
+  mesh.Vertices.resize(n, 3);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    piece->GetPoint(i, x);
+    mesh.Vertices.row(i) << x[0], x[1], x[2];
+  }
+  vtkDataArray* ghosts = piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
+  // Cell ids of a vtkPolyData: vertices, lines, then polygons.
+  const vtkIdType first = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
+  std::vector<std::array<int, 3>> faces;
+  faces.reserve(piece->GetNumberOfPolys());
+  auto cells = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
+  vtkIdType cell = first;
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell(), ++cell)
+  {
+    vtkIdType npts;
+    const vtkIdType* pts;
+    cells->GetCurrentCell(npts, pts);
+    if (npts != 3 ||
+      (ghosts && (static_cast<unsigned char>(ghosts->GetComponent(cell, 0)) & skip) != 0))
+    {
+      continue;
+    }
+    faces.push_back(
+      { static_cast<int>(pts[0]), static_cast<int>(pts[1]), static_cast<int>(pts[2]) });
+  }
+  mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    mesh.Faces.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+// Points that another piece may hold: those on an edge that not exactly two triangles of this
+// piece share (a seam between pieces, a boundary of the surface, a non-manifold edge).
+std::vector<int> BorderPoints(const spectral::TriangleMesh& mesh)
+{
+  std::unordered_map<std::uint64_t, int> edges;
+  edges.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 3);
+  for (Eigen::Index f = 0; f < mesh.Faces.rows(); ++f)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::uint32_t a = static_cast<std::uint32_t>(mesh.Faces(f, e));
+      const std::uint32_t b = static_cast<std::uint32_t>(mesh.Faces(f, (e + 1) % 3));
+      ++edges[(static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b)];
+    }
+  }
+  std::vector<char> border(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
+  for (const auto& edge : edges)
+  {
+    if (edge.second != 2)
+    {
+      border[edge.first >> 32] = 1;
+      border[edge.first & 0xffffffffu] = 1;
+    }
+  }
+  std::vector<int> points;
+  for (std::size_t i = 0; i < border.size(); ++i)
+  {
+    if (border[i])
+    {
+      points.push_back(static_cast<int>(i));
+    }
+  }
+  return points;
+}
+
+//------------------------------------------------------------------------------
+// Global numbers of the used points of this piece (see the header, step 1).
+struct Numbering
+{
+  /// For each used point of the piece: its global number and whether this process owns it.
+  std::vector<PetscInt> Global;
+  std::vector<char> Owned;
+  PetscInt OwnedCount = 0;
+  PetscInt Total = 0;
+};
+
+Numbering NumberPoints(MPI_Comm comm,
+  const spectral::TriangleMesh& mesh,
+  double diagonal,
+  const double bounds[6])
+{
+  int rank = 0;
+  int size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int n = static_cast<int>(mesh.Vertices.rows());
+
+  // Every process receives the border points of all, in rank order.
+  const std::vector<int> border = BorderPoints(mesh);
+  const int count = static_cast<int>(border.size());
+  std::vector<int> counts(size);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::vector<int> offsets(size + 1, 0);
+  std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
+  std::vector<double> coordinates(3 * static_cast<std::size_t>(count));
+  for (int b = 0; b < count; ++b)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      coordinates[3 * b + c] = mesh.Vertices(border[b], c);
+    }
+  }
+  std::vector<double> all(3 * static_cast<std::size_t>(offsets[size]));
+  std::vector<int> counts3(size);
+  std::vector<int> offsets3(size);
+  for (int r = 0; r < size; ++r)
+  {
+    counts3[r] = 3 * counts[r];
+    offsets3[r] = 3 * offsets[r];
+  }
+  MPI_Allgatherv(coordinates.data(),
+    3 * count,
+    MPI_DOUBLE,
+    all.data(),
+    counts3.data(),
+    offsets3.data(),
+    MPI_DOUBLE,
+    comm);
+
+  // The same merge on every process: the first (lowest rank) holder of a point owns it.
+  std::vector<int> first(static_cast<std::size_t>(offsets[size]));
+  {
+    vtkNew<vtkPoints> merged;
+    merged->SetDataTypeToDouble();
+    vtkNew<vtkPointLocator> locator;
+    locator->SetTolerance(vtkManifoldHarmonicsParallel::SeamTolerance * std::max(diagonal, 1e-300));
+    double box[6];
+    std::copy(bounds, bounds + 6, box);
+    locator->InitPointInsertion(merged, box, std::max(offsets[size], 1));
+    std::vector<int> firstOfMerged;
+    for (int g = 0; g < offsets[size]; ++g)
+    {
+      vtkIdType id = -1;
+      if (locator->InsertUniquePoint(&all[3 * static_cast<std::size_t>(g)], id))
+      {
+        firstOfMerged.push_back(g);
+      }
+      first[g] = firstOfMerged[id];
+    }
+  }
+
+  Numbering numbering;
+  numbering.Owned.assign(static_cast<std::size_t>(n), 1);
+  for (int b = 0; b < count; ++b)
+  {
+    // Owned by the first holder; a copy in the same piece (coincident points) is not.
+    numbering.Owned[border[b]] = first[offsets[rank] + b] == offsets[rank] + b ? 1 : 0;
+  }
+  numbering.OwnedCount =
+    static_cast<PetscInt>(std::count(numbering.Owned.begin(), numbering.Owned.end(), 1));
+  long long owned = numbering.OwnedCount;
+  long long start = 0;
+  long long total = 0;
+  MPI_Exscan(&owned, &start, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  MPI_Allreduce(&owned, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  if (rank == 0)
+  {
+    start = 0;
+  }
+  if (total > std::numeric_limits<PetscInt>::max())
+  {
+    throw std::runtime_error("the surface has " + std::to_string(total) +
+      " points, more than this PETSc build's 32-bit indices address");
+  }
+  numbering.Total = static_cast<PetscInt>(total);
+  numbering.Global.assign(static_cast<std::size_t>(n), -1);
+  PetscInt next = static_cast<PetscInt>(start);
+  for (int i = 0; i < n; ++i)
+  {
+    if (numbering.Owned[i])
+    {
+      numbering.Global[i] = next++;
+    }
+  }
+
+  // The owners' numbers of the border points, for the copies held by other processes.
+  std::vector<PetscInt> mine(static_cast<std::size_t>(count));
+  for (int b = 0; b < count; ++b)
+  {
+    mine[b] = numbering.Global[border[b]];
+  }
+  std::vector<PetscInt> numbers(static_cast<std::size_t>(offsets[size]));
+  MPI_Allgatherv(
+    mine.data(), count, MPIU_INT, numbers.data(), counts.data(), offsets.data(), MPIU_INT, comm);
+  for (int b = 0; b < count; ++b)
+  {
+    if (!numbering.Owned[border[b]])
+    {
+      numbering.Global[border[b]] = numbers[first[offsets[rank] + b]];
+    }
+  }
+  return numbering;
+}
+
+//------------------------------------------------------------------------------
+// Tells PETSc (and so MUMPS) that a matrix is symmetric, for good.
+void MarkSymmetric(Mat matrix)
+{
+  MH_PETSC(MatSetOption(matrix, MAT_SYMMETRIC, PETSC_TRUE));
+  MH_PETSC(MatSetOption(matrix, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+}
+
+//------------------------------------------------------------------------------
+// A distributed AIJ matrix of `local` (a matrix on the piece's used points) added up by global
+// numbers, exactly preallocated (a MATPREALLOCATOR pass over the same entries).
+void AddEntries(Mat matrix, const spectral::SparseMatrix& local, const std::vector<PetscInt>& ids)
+{
+  std::vector<PetscInt> rows;
+  std::vector<PetscScalar> values;
+  for (int j = 0; j < local.outerSize(); ++j)
+  {
+    rows.clear();
+    values.clear();
+    for (spectral::SparseMatrix::InnerIterator it(local, j); it; ++it)
+    {
+      rows.push_back(ids[it.row()]);
+      values.push_back(it.value());
+    }
+    const PetscInt column = ids[j];
+    MH_PETSC(MatSetValues(matrix,
+      static_cast<PetscInt>(rows.size()),
+      rows.data(),
+      1,
+      &column,
+      values.data(),
+      ADD_VALUES));
+  }
+}
+
+void CreateMatrix(MPI_Comm comm,
+  const spectral::SparseMatrix& local,
+  const Numbering& numbering,
+  OwnedMat& out)
+{
+  OwnedMat preallocator;
+  MH_PETSC(MatCreate(comm, &preallocator.Object));
+  MH_PETSC(MatSetSizes(preallocator.Object,
+    numbering.OwnedCount,
+    numbering.OwnedCount,
+    numbering.Total,
+    numbering.Total));
+  MH_PETSC(MatSetType(preallocator.Object, MATPREALLOCATOR));
+  MH_PETSC(MatSetUp(preallocator.Object));
+  AddEntries(preallocator.Object, local, numbering.Global);
+  MH_PETSC(MatAssemblyBegin(preallocator.Object, MAT_FINAL_ASSEMBLY));
+  MH_PETSC(MatAssemblyEnd(preallocator.Object, MAT_FINAL_ASSEMBLY));
+
+  MH_PETSC(MatCreate(comm, &out.Object));
+  MH_PETSC(MatSetSizes(
+    out.Object, numbering.OwnedCount, numbering.OwnedCount, numbering.Total, numbering.Total));
+  MH_PETSC(MatSetType(out.Object, MATAIJ));
+  MH_PETSC(MatPreallocatorPreallocate(preallocator.Object, PETSC_TRUE, out.Object));
+  AddEntries(out.Object, local, numbering.Global);
+  MH_PETSC(MatAssemblyBegin(out.Object, MAT_FINAL_ASSEMBLY));
+  MH_PETSC(MatAssemblyEnd(out.Object, MAT_FINAL_ASSEMBLY));
+  MarkSymmetric(out.Object);
+}
+
+//------------------------------------------------------------------------------
+// The number of eigenvalues below `shift`: the negative inertia of an LDL^T factorization of
+// Q - shift D by MUMPS, with the options of the ST's factorization (prefix st_).
+PetscInt CountBelow(Mat Q, Mat D, double shift)
+{
+  OwnedMat shifted;
+  MH_PETSC(MatDuplicate(Q, MAT_COPY_VALUES, &shifted.Object));
+  MH_PETSC(MatAXPY(shifted.Object, -shift, D, SUBSET_NONZERO_PATTERN));
+  MarkSymmetric(shifted.Object);
+  OwnedKSP ksp;
+  MH_PETSC(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(Q)), &ksp.Object));
+  MH_PETSC(KSPSetOptionsPrefix(ksp.Object, "st_"));
+  MH_PETSC(KSPSetOperators(ksp.Object, shifted.Object, shifted.Object));
+  MH_PETSC(KSPSetType(ksp.Object, KSPPREONLY));
+  PC pc;
+  MH_PETSC(KSPGetPC(ksp.Object, &pc));
+  MH_PETSC(PCSetType(pc, PCCHOLESKY));
+  MH_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  MH_PETSC(PCSetErrorIfFailure(pc, PETSC_TRUE));
+  MH_PETSC(KSPSetFromOptions(ksp.Object));
+  MH_PETSC(KSPSetUp(ksp.Object));
+  Mat factor;
+  MH_PETSC(PCFactorGetMatrix(pc, &factor));
+  PetscInt negative = 0;
+  PetscInt zero = 0;
+  PetscInt positive = 0;
+  MH_PETSC(MatGetInertia(factor, &negative, &zero, &positive));
+  return negative;
+}
+
+//------------------------------------------------------------------------------
+// Whether any process's user cancelled (collective).
+bool AnyCancelled(MPI_Comm comm, const vtkManifoldHarmonicsSlepc::Settings& settings)
+{
+  int local = settings.Cancelled && settings.Cancelled() ? 1 : 0;
+  int any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+//------------------------------------------------------------------------------
+// The eigenpairs of one interval by Krylov-Schur spectrum slicing (shift-and-invert on MUMPS
+// Cholesky factorizations, ICNTL(13) and (24) from the session's options), ascending.
+struct Slice
+{
+  std::vector<std::pair<double, PetscInt>> Order;
+  /// Eigenvalues in the interval by the inertia at its ends, and the shifts used.
+  PetscInt Count = 0;
+  PetscInt Shifts = 0;
+};
+
+Slice SolveSlice(OwnedEPS& eps,
+  Mat Q,
+  Mat D,
+  double lower,
+  double upper,
+  int partitions,
+  const vtkManifoldHarmonicsSlepc::Settings& settings)
+{
+  MH_PETSC(EPSCreate(PetscObjectComm(reinterpret_cast<PetscObject>(Q)), &eps.Object));
+  MH_PETSC(EPSSetOperators(eps.Object, Q, D));
+  MH_PETSC(EPSSetProblemType(eps.Object, EPS_GHEP));
+  MH_PETSC(EPSSetType(eps.Object, EPSKRYLOVSCHUR));
+  MH_PETSC(EPSSetWhichEigenpairs(eps.Object, EPS_ALL));
+  MH_PETSC(EPSSetInterval(eps.Object, lower, upper));
+  MH_PETSC(EPSSetTolerances(eps.Object, settings.Tolerance, settings.MaxIterations));
+  ST st;
+  MH_PETSC(EPSGetST(eps.Object, &st));
+  MH_PETSC(STSetType(st, STSINVERT));
+  MH_PETSC(STSetMatStructure(st, SUBSET_NONZERO_PATTERN));
+  KSP ksp;
+  MH_PETSC(STGetKSP(st, &ksp));
+  MH_PETSC(KSPSetType(ksp, KSPPREONLY));
+  PC pc;
+  MH_PETSC(KSPGetPC(ksp, &pc));
+  MH_PETSC(PCSetType(pc, PCCHOLESKY));
+  MH_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  MH_PETSC(PCSetErrorIfFailure(pc, PETSC_TRUE));
+  MH_PETSC(EPSKrylovSchurSetPartitions(eps.Object, partitions));
+  MH_PETSC(EPSSetFromOptions(eps.Object));
+  MH_PETSC(EPSSolve(eps.Object));
+
+  Slice slice;
+  PetscInt converged = 0;
+  MH_PETSC(EPSGetConverged(eps.Object, &converged));
+  PetscReal* at = nullptr;
+  PetscInt* inertias = nullptr;
+  MH_PETSC(EPSKrylovSchurGetInertias(eps.Object, &slice.Shifts, &at, &inertias));
+  PetscInt atLower = 0;
+  PetscInt atUpper = 0;
+  for (PetscInt k = 0; k < slice.Shifts; ++k)
+  {
+    if (at[k] <= lower)
+    {
+      atLower = inertias[k];
+    }
+    if (at[k] >= upper)
+    {
+      atUpper = inertias[k];
+    }
+  }
+  PetscFree(at);
+  PetscFree(inertias);
+  slice.Count = atUpper - atLower;
+  if (slice.Count != converged)
+  {
+    std::ostringstream text;
+    text << "SLEPc computed " << converged << " eigenpairs in a slice where the inertia counts "
+         << slice.Count << ": raise MaxIterations, or lower Tolerance";
+    throw std::runtime_error(text.str());
+  }
+  slice.Order.resize(static_cast<std::size_t>(converged));
+  for (PetscInt k = 0; k < converged; ++k)
+  {
+    PetscScalar real = 0.0;
+    PetscScalar imaginary = 0.0;
+    MH_PETSC(EPSGetEigenvalue(eps.Object, k, &real, &imaginary));
+    slice.Order[k] = { PetscRealPart(real), k };
+  }
+  std::sort(slice.Order.begin(), slice.Order.end());
+  return slice;
+}
+} // anonymous namespace
+
+namespace vtkManifoldHarmonicsSlepc
+{
+//------------------------------------------------------------------------------
+Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Settings& settings)
+{
+  Initialize();
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  int rank = 0;
+  int size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int processes = controller ? controller->GetNumberOfProcesses() : 1;
+  if (processes != size)
+  {
+    // Decided alike on every process: the sizes are the same everywhere.
+    throw std::runtime_error("the SLEPc solver needs every MPI process of the run (" +
+      std::to_string(size) + ") in the pipeline, which has " + std::to_string(processes));
+  }
+  Session session(settings.Options);
+  auto stage = [&settings](const char* name)
+  {
+    if (settings.Stage)
+    {
+      settings.Stage(name);
+    }
+  };
+  auto progress = [&settings](double fraction)
+  {
+    if (settings.Progress)
+    {
+      settings.Progress(fraction);
+    }
+  };
+  auto warn = [&settings, rank](const std::string& text)
+  {
+    if (settings.Warning && rank == 0)
+    {
+      settings.Warning(text);
+    }
+  };
+
+  // 1. This piece's triangles of non-zero area and the points they use; global numbers.
+  stage("Assemble");
+  const spectral::PreparedMesh prepared = spectral::PrepareMesh(LocalTriangles(piece));
+  spectral::TriangleMesh mesh = prepared.Mesh;
+  const Eigen::Index used = mesh.Vertices.rows();
+  double low[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double high[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (int c = 0; c < 3 && used > 0; ++c)
+  {
+    low[c] = mesh.Vertices.col(c).minCoeff();
+    high[c] = mesh.Vertices.col(c).maxCoeff();
+  }
+  double globalLow[3];
+  double globalHigh[3];
+  MPI_Allreduce(low, globalLow, 3, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(high, globalHigh, 3, MPI_DOUBLE, MPI_MAX, comm);
+  long long usedLocal = used;
+  long long usedTotal = 0;
+  MPI_Allreduce(&usedLocal, &usedTotal, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  if (usedTotal == 0)
+  {
+    throw std::runtime_error("no triangle of non-zero area on any process");
+  }
+  double diagonal = 0.0;
+  double bounds[6];
+  for (int c = 0; c < 3; ++c)
+  {
+    diagonal += (globalHigh[c] - globalLow[c]) * (globalHigh[c] - globalLow[c]);
+    bounds[2 * c] = globalLow[c];
+    bounds[2 * c + 1] = globalHigh[c];
+  }
+  diagonal = std::sqrt(diagonal);
+  const Numbering numbering = NumberPoints(comm, mesh, diagonal, bounds);
+
+  Result result;
+  result.GlobalPoints = numbering.Total;
+  result.OwnedPoints = numbering.OwnedCount;
+  int m = settings.NumberOfHarmonics;
+  if (m > numbering.Total)
+  {
+    warn("NumberOfHarmonics " + std::to_string(m) + " clamped to the " +
+      std::to_string(numbering.Total) + " points that triangles use.");
+    m = static_cast<int>(numbering.Total);
+  }
+
+  // 2. Operators of the local triangles in the unit of the global diameter, added up by global
+  // numbers.
+  const double s = spectral::UnitScale(diagonal);
+  mesh.Vertices /= s;
+  double areaLocal = spectral::SurfaceArea(mesh);
+  double area = 0.0;
+  MPI_Allreduce(&areaLocal, &area, 1, MPI_DOUBLE, MPI_SUM, comm);
+  OwnedMat Q;
+  CreateMatrix(comm, spectral::CotanStiffness(mesh), numbering, Q);
+  const spectral::Vector lumpedLocal = spectral::LumpedMass(mesh);
+  OwnedVec lumped;
+  MH_PETSC(MatCreateVecs(Q.Object, &lumped.Object, nullptr));
+  MH_PETSC(VecSet(lumped.Object, 0.0));
+  MH_PETSC(VecSetValues(lumped.Object,
+    static_cast<PetscInt>(used),
+    numbering.Global.data(),
+    lumpedLocal.data(),
+    ADD_VALUES));
+  MH_PETSC(VecAssemblyBegin(lumped.Object));
+  MH_PETSC(VecAssemblyEnd(lumped.Object));
+  OwnedMat D;
+  if (settings.ConsistentMass)
+  {
+    CreateMatrix(comm, spectral::ConsistentMass(mesh), numbering, D);
+  }
+  else
+  {
+    MH_PETSC(MatCreateAIJ(comm,
+      numbering.OwnedCount,
+      numbering.OwnedCount,
+      numbering.Total,
+      numbering.Total,
+      1,
+      nullptr,
+      0,
+      nullptr,
+      &D.Object));
+    MH_PETSC(MatDiagonalSet(D.Object, lumped.Object, INSERT_VALUES));
+    MH_PETSC(MatAssemblyBegin(D.Object, MAT_FINAL_ASSEMBLY));
+    MH_PETSC(MatAssemblyEnd(D.Object, MAT_FINAL_ASSEMBLY));
+    MarkSymmetric(D.Object);
+  }
+  progress(0.05);
+
+  // 3. The interval: Weyl's law for its upper end, widened until the inertia counts m.
+  stage("Interval");
+  const double gap = 4.0 * M_PI / std::max(area, std::numeric_limits<double>::min());
+  const double lower = -0.5 * gap;
+  double upper = 1.2 * gap * (m + 1);
+  PetscInt below = CountBelow(Q.Object, D.Object, upper);
+  for (int attempt = 0; below < m; ++attempt)
+  {
+    if (attempt > 60)
+    {
+      throw std::runtime_error("the inertia count stays below " + std::to_string(m) +
+        " however far the interval is widened");
+    }
+    upper *= below > 0 ? std::max(1.25, 1.1 * m / below) : 2.0;
+    below = CountBelow(Q.Object, D.Object, upper);
+  }
+  progress(0.2);
+
+  // The eigensolve: [lower, upper] in slices of about SliceHarmonics eigenvalues by Weyl's law,
+  // ascending, until m pairs are found. Between slices, progress and the abort flag (SLEPc's
+  // spectrum slicing calls no monitor).
+  stage("Eigensolve");
+  int partitions = std::max(1, settings.Partitions);
+  if (partitions > size)
+  {
+    warn("SlepcPartitions " + std::to_string(partitions) + " reduced to the " +
+      std::to_string(size) + " processes of the run.");
+    partitions = size;
+  }
+  const int slices = std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics);
+  const PetscInt owned = numbering.OwnedCount;
+  spectral::DenseMatrix X(owned, m);
+  spectral::Vector lambda(m);
+  std::vector<OwnedVec> columns(static_cast<std::size_t>(m));
+  OwnedVec work;
+  MH_PETSC(MatCreateVecs(Q.Object, &work.Object, nullptr));
+  int found = 0;
+  for (int j = 0; j < slices && found < m; ++j)
+  {
+    if (AnyCancelled(comm, settings))
+    {
+      throw vtkManifoldHarmonicsSlepc::Cancelled();
+    }
+    const double from = j == 0 ? lower : upper * j / slices;
+    const double to = upper * (j + 1) / slices;
+    OwnedEPS eps;
+    const Slice slice = SolveSlice(eps, Q.Object, D.Object, from, to, partitions, settings);
+    result.InertiaCount += static_cast<int>(slice.Count);
+    result.Computed += static_cast<int>(slice.Order.size());
+    result.Shifts += static_cast<int>(slice.Shifts);
+    // The smallest, D-normalized, in storage of our own (one column per pair, owned rows).
+    for (std::size_t i = 0; i < slice.Order.size() && found < m; ++i, ++found)
+    {
+      lambda[found] = slice.Order[i].first;
+      MH_PETSC(VecCreateMPIWithArray(
+        comm, 1, owned, numbering.Total, X.col(found).data(), &columns[found].Object));
+      MH_PETSC(
+        EPSGetEigenvector(eps.Object, slice.Order[i].second, columns[found].Object, nullptr));
+      MH_PETSC(MatMult(D.Object, columns[found].Object, work.Object));
+      PetscScalar norm2 = 0.0;
+      MH_PETSC(VecDot(columns[found].Object, work.Object, &norm2));
+      MH_PETSC(VecScale(columns[found].Object, 1.0 / std::sqrt(PetscRealPart(norm2))));
+    }
+    progress(0.2 + 0.65 * (j + 1) / slices);
+  }
+  if (found < m)
+  {
+    throw std::runtime_error("SLEPc found " + std::to_string(found) + " eigenpairs below " +
+      std::to_string(upper / (s * s)) + ", where the inertia counts " + std::to_string(below) +
+      " (" + std::to_string(m) + " needed)");
+  }
+  progress(0.85);
+
+  // 4. Checks: D-orthonormality, relative residuals and componentwise backward errors, with
+  // the core's definitions (Verification.h), on distributed vectors.
+  stage("Verify");
+  OwnedMat absQ;
+  MH_PETSC(MatDuplicate(Q.Object, MAT_COPY_VALUES, &absQ.Object));
+  {
+    PetscInt first = 0;
+    PetscInt end = 0;
+    MH_PETSC(MatGetOwnershipRange(Q.Object, &first, &end));
+    std::vector<PetscScalar> values;
+    for (PetscInt row = first; row < end; ++row)
+    {
+      PetscInt count = 0;
+      const PetscInt* cols = nullptr;
+      const PetscScalar* entries = nullptr;
+      MH_PETSC(MatGetRow(Q.Object, row, &count, &cols, &entries));
+      values.assign(entries, entries + count);
+      for (PetscScalar& value : values)
+      {
+        value = std::abs(value);
+      }
+      const PetscErrorCode set =
+        MatSetValues(absQ.Object, 1, &row, count, cols, values.data(), INSERT_VALUES);
+      MH_PETSC(MatRestoreRow(Q.Object, row, &count, &cols, &entries));
+      MH_PETSC(set);
+    }
+    MH_PETSC(MatAssemblyBegin(absQ.Object, MAT_FINAL_ASSEMBLY));
+    MH_PETSC(MatAssemblyEnd(absQ.Object, MAT_FINAL_ASSEMBLY));
+  }
+  OwnedVec rowSums;
+  OwnedVec ones;
+  MH_PETSC(MatCreateVecs(Q.Object, &rowSums.Object, &ones.Object));
+  MH_PETSC(VecSet(ones.Object, 1.0));
+  MH_PETSC(MatMult(D.Object, ones.Object, rowSums.Object));
+  const double top = m > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  double reference = top;
+  for (int k = 0; k < m; ++k)
+  {
+    if (!spectral::IsZeroEigenvalue(std::abs(lambda[k]), top))
+    {
+      reference = std::min(reference, std::abs(lambda[k]));
+    }
+  }
+  {
+    PetscScalar trace = 0.0;
+    PetscScalar mass = 0.0;
+    OwnedVec diagonalQ;
+    MH_PETSC(MatCreateVecs(Q.Object, &diagonalQ.Object, nullptr));
+    MH_PETSC(MatGetDiagonal(Q.Object, diagonalQ.Object));
+    MH_PETSC(VecSum(diagonalQ.Object, &trace));
+    MH_PETSC(VecSum(rowSums.Object, &mass));
+    reference = std::max(reference, 1e-6 * trace / std::max(mass, 1e-300));
+  }
+  const spectral::EigenOptions tolerances;
+  spectral::Vector rowSum(owned);
+  {
+    const PetscScalar* values = nullptr;
+    MH_PETSC(VecGetArrayRead(rowSums.Object, &values));
+    std::copy(values, values + owned, rowSum.data());
+    MH_PETSC(VecRestoreArrayRead(rowSums.Object, &values));
+  }
+  spectral::DenseMatrix gram = spectral::DenseMatrix::Zero(m, m);
+  OwnedVec Qx;
+  OwnedVec Dx;
+  OwnedVec absX;
+  OwnedVec scale;
+  OwnedVec absDx;
+  MH_PETSC(MatCreateVecs(Q.Object, &Qx.Object, &Dx.Object));
+  MH_PETSC(MatCreateVecs(Q.Object, &absX.Object, &scale.Object));
+  MH_PETSC(MatCreateVecs(Q.Object, &absDx.Object, nullptr));
+  const int block = 32;
+  spectral::DenseMatrix DX(owned, block);
+  for (int k0 = 0; k0 < m; k0 += block)
+  {
+    const int count = std::min(block, m - k0);
+    for (int j = 0; j < count; ++j)
+    {
+      const int k = k0 + j;
+      Vec x = columns[k].Object;
+      MH_PETSC(MatMult(Q.Object, x, Qx.Object));
+      MH_PETSC(MatMult(D.Object, x, Dx.Object));
+      const PetscScalar* dx = nullptr;
+      MH_PETSC(VecGetArrayRead(Dx.Object, &dx));
+      std::copy(dx, dx + owned, DX.col(j).data());
+      MH_PETSC(VecRestoreArrayRead(Dx.Object, &dx));
+      // Qx <- Qx - lambda Dx: the residual.
+      MH_PETSC(VecAXPY(Qx.Object, -lambda[k], Dx.Object));
+      MH_PETSC(VecCopy(x, absX.Object));
+      MH_PETSC(VecAbs(absX.Object));
+      MH_PETSC(MatMult(absQ.Object, absX.Object, scale.Object));
+      MH_PETSC(MatMult(D.Object, absX.Object, absDx.Object));
+      MH_PETSC(VecAXPY(scale.Object, std::abs(lambda[k]), absDx.Object));
+      PetscReal largest = 0.0;
+      MH_PETSC(VecMax(scale.Object, nullptr, &largest));
+      const double floor = spectral::detail::BackwardErrorFloor * largest;
+      const PetscScalar* r = nullptr;
+      const PetscScalar* denominators = nullptr;
+      MH_PETSC(VecGetArrayRead(Qx.Object, &r));
+      MH_PETSC(VecGetArrayRead(scale.Object, &denominators));
+      double sums[2] = { 0.0, 0.0 }; // sum r^2 / d, and the largest backward ratio
+      for (PetscInt i = 0; i < owned; ++i)
+      {
+        sums[0] += r[i] * r[i] / rowSum[i];
+        const double error = std::abs(r[i]);
+        if (error > 0.0)
+        {
+          const double denominator = std::max(denominators[i], floor);
+          sums[1] = std::max(sums[1],
+            denominator > 0.0 ? error / denominator : std::numeric_limits<double>::infinity());
+        }
+      }
+      MH_PETSC(VecRestoreArrayRead(Qx.Object, &r));
+      MH_PETSC(VecRestoreArrayRead(scale.Object, &denominators));
+      double global[2];
+      MPI_Allreduce(&sums[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, comm);
+      MPI_Allreduce(&sums[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, comm);
+      const double relative = std::sqrt(global[0]) /
+        std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
+      result.MaxResidual = std::max(result.MaxResidual, relative);
+      result.MaxBackwardError = std::max(result.MaxBackwardError, global[1]);
+      if (!(relative <= tolerances.ResidualTolerance) &&
+        !(global[1] <= tolerances.BackwardErrorTolerance))
+      {
+        std::ostringstream text;
+        text << "eigenpair " << k << " (lambda = " << lambda[k] / (s * s)
+             << ") has relative residual " << relative << " and backward error " << global[1]
+             << ", above the tolerances " << tolerances.ResidualTolerance << " and "
+             << tolerances.BackwardErrorTolerance << ": lower Tolerance";
+        throw std::runtime_error(text.str());
+      }
+    }
+    gram.middleCols(k0, count).noalias() = X.transpose() * DX.leftCols(count);
+  }
+  spectral::DenseMatrix globalGram(m, m);
+  MPI_Allreduce(gram.data(), globalGram.data(), m * m, MPI_DOUBLE, MPI_SUM, comm);
+  result.OrthonormalityError =
+    m > 0 ? (globalGram - spectral::DenseMatrix::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
+  if (!(result.OrthonormalityError <= tolerances.ResidualTolerance * 100))
+  {
+    throw std::runtime_error("the eigenvectors are D-orthonormal to " +
+      std::to_string(result.OrthonormalityError) + " only: lower Tolerance");
+  }
+  progress(0.9);
+
+  // 5. The rows of this piece's points, seam copies included (from their owners).
+  stage("Write");
+  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  vtkManifoldHarmonicsParallel::PieceBasis& rows = result.Rows;
+  rows.Eigenvalues = lambda / (s * s);
+  rows.Harmonics = vtkSmartPointer<vtkDoubleArray>::New();
+  rows.Harmonics->SetNumberOfComponents(std::max(m, 1));
+  rows.Harmonics->SetNumberOfTuples(n);
+  rows.Harmonics->FillValue(0.0);
+  rows.Mass = vtkSmartPointer<vtkDoubleArray>::New();
+  rows.Mass->SetNumberOfTuples(n);
+  rows.Mass->FillValue(0.0);
+  rows.Duplicates = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  rows.Duplicates->SetNumberOfTuples(n);
+  rows.Duplicates->FillValue(0);
+  OwnedIS from;
+  MH_PETSC(ISCreateGeneral(PETSC_COMM_SELF,
+    static_cast<PetscInt>(used),
+    numbering.Global.data(),
+    PETSC_COPY_VALUES,
+    &from.Object));
+  OwnedVec local;
+  MH_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(used), &local.Object));
+  OwnedScatter scatter;
+  MH_PETSC(VecScatterCreate(lumped.Object, from.Object, local.Object, nullptr, &scatter.Object));
+  auto gather = [&](Vec global, const std::function<void(Eigen::Index, double)>& store)
+  {
+    MH_PETSC(VecScatterBegin(scatter.Object, global, local.Object, INSERT_VALUES, SCATTER_FORWARD));
+    MH_PETSC(VecScatterEnd(scatter.Object, global, local.Object, INSERT_VALUES, SCATTER_FORWARD));
+    const PetscScalar* values = nullptr;
+    MH_PETSC(VecGetArrayRead(local.Object, &values));
+    for (Eigen::Index i = 0; i < used; ++i)
+    {
+      store(i, values[i]);
+    }
+    MH_PETSC(VecRestoreArrayRead(local.Object, &values));
+  };
+  const double inverseScale = 1.0 / s;
+  double* harmonics = rows.Harmonics->GetPointer(0);
+  for (int k = 0; k < m; ++k)
+  {
+    gather(columns[k].Object,
+      [&](Eigen::Index i, double value) {
+        harmonics[static_cast<vtkIdType>(prepared.InputPointIds[i]) * m + k] = value * inverseScale;
+      });
+  }
+  const double areaScale = s * s;
+  gather(lumped.Object,
+    [&](Eigen::Index i, double value)
+    { rows.Mass->SetValue(prepared.InputPointIds[i], value * areaScale); });
+  for (Eigen::Index i = 0; i < used; ++i)
+  {
+    if (!numbering.Owned[i])
+    {
+      rows.Duplicates->SetValue(prepared.InputPointIds[i], vtkDataSetAttributes::DUPLICATEPOINT);
+    }
+  }
+  result.UpperEnd = upper / (s * s);
+  progress(1.0);
+  return result;
+}
+} // namespace vtkManifoldHarmonicsSlepc

@@ -1,0 +1,125 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkManifoldHarmonicsSlepc.h
+ * @brief Private helper of vtkManifoldHarmonicBasis: the distributed eigensolve on SLEPc/PETSc
+ *        (Solver SLEPC), built only when CMake finds SLEPc (MANIFOLDHARMONICS_HAS_SLEPC).
+ *
+ * Every process of the run passes its own piece of the surface; nothing is gathered on one
+ * process. The steps (all collective over PETSC_COMM_WORLD, which is MPI_COMM_WORLD, the
+ * communicator of ParaView's global controller):
+ *
+ * 1. Global point numbers. Each process keeps its triangles of non-zero area
+ *    (spectral::PrepareMesh, ghost cells left out) and the points they use. The points on the
+ *    border of its piece (on an edge that fewer or more than two of its triangles share) are
+ *    the only ones another piece can hold: every process receives these seam points of all
+ *    processes (O(sqrt n) per piece on a surface, not the mesh) and merges them as the gather path
+ *    does (within SeamTolerance of the bounding box diagonal, in rank order, so every process
+ *    finds the same merge). A point is owned by the lowest rank that holds it; each process
+ *    numbers its owned points contiguously after those of the lower ranks.
+ * 2. Assembly. Each process computes the cotan stiffness and the mass (lumped or consistent) of
+ *    its own triangles with the core's formulas (Operators.h), in units of spectral::UnitScale
+ *    of the global diameter, and adds them into distributed PETSc AIJ matrices by global number
+ *    (MatSetValues ADD_VALUES; PETSc sends the rows of other processes at assembly).
+ * 3. Eigensolve. The interval [a, b] with a = -2 pi / area (half the mean eigenvalue gap by
+ *    Weyl's law, below the zero eigenvalue of the singular stiffness) and b from Weyl's law
+ *    lambda_m ~ 4 pi m / area, widened until the inertia of a MUMPS LDL^T factorization of
+ *    Q - b D counts at least m eigenvalues below b. SLEPc's Krylov-Schur computes every
+ *    eigenpair of [a, b] by spectrum slicing (shift-and-invert, MUMPS Cholesky with inertia,
+ *    ICNTL(13) = 1 and ICNTL(24) = 1; npart sub-intervals solved by groups of processes at
+ *    once), in slices of about 200 eigenvalues, ascending, until m pairs are found: between
+ *    slices the abort flag is polled (on every process) and progress reported, since spectrum
+ *    slicing calls no monitor. In each slice the inertia at its ends must count the pairs SLEPc
+ *    returned. The m smallest are kept and D-normalized.
+ * 4. Checks, distributed (PETSc Mat and Vec operations): D-orthonormality, relative residuals
+ *    and componentwise backward errors (the core's definitions and tolerances, Verification.h).
+ *    A pair above both tolerances is an error.
+ * 5. Rows. A VecScatter brings every process the values of its points, the copies of seam
+ *    points owned elsewhere included; those are flagged DUPLICATEPOINT, as in the gather path.
+ *
+ * Errors of SLEPc, PETSc and MUMPS are thrown as std::runtime_error carrying their message and
+ * what to change; they arise on every process alike (the calls are collective).
+ */
+#ifndef vtkManifoldHarmonicsSlepc_h
+#define vtkManifoldHarmonicsSlepc_h
+
+#include "vtkManifoldHarmonicsParallel.h"
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+class vtkPolyData;
+class vtkMultiProcessController;
+
+namespace vtkManifoldHarmonicsSlepc
+{
+/// What the filter asks of the solve.
+struct Settings
+{
+  /// m, the number of smallest eigenpairs.
+  int NumberOfHarmonics = 0;
+  /// The consistent (Galerkin) mass instead of the lumped one.
+  bool ConsistentMass = false;
+  /// SLEPc's npart: sub-intervals solved at once by groups of processes (clamped to the number
+  /// of processes).
+  int Partitions = 1;
+  /// Options for PETSc's options database (PetscOptionsInsertString syntax), applied after the
+  /// solver's own, for this solve only.
+  std::string Options;
+  /// Convergence tolerance and iteration limit of Krylov-Schur.
+  double Tolerance = 1e-11;
+  int MaxIterations = 1000;
+  /// Progress in [0, 1], a stage name, and the abort flag (polled between Krylov-Schur
+  /// iterations; every process stops when one is cancelled).
+  std::function<void(double)> Progress;
+  std::function<void(const char*)> Stage;
+  std::function<bool()> Cancelled;
+  std::function<void(const std::string&)> Warning;
+};
+
+/// The result on one process: the rows of its points, and the figures of the whole solve.
+struct Result
+{
+  /// Harmonics (n_r by m), lumped mass (n_r) and DUPLICATEPOINT flags (n_r) of the piece's
+  /// points, and the m eigenvalues (on every process).
+  vtkManifoldHarmonicsParallel::PieceBasis Rows;
+  /// Largest componentwise backward error and relative residual of the m pairs.
+  double MaxBackwardError = 0.0;
+  double MaxResidual = 0.0;
+  /// max |H^T M H - I| over all entries.
+  double OrthonormalityError = 0.0;
+  /// Eigenvalues below the upper end of the interval (MUMPS inertia at that shift), the number
+  /// SLEPc computed in the interval, and the upper end (in the units of the mesh).
+  int InertiaCount = 0;
+  int Computed = 0;
+  double UpperEnd = 0.0;
+  /// Points of the whole surface (after merging seams) and owned by this process.
+  long long GlobalPoints = 0;
+  long long OwnedPoints = 0;
+  /// Number of shifts (factorizations) of the spectrum slicing.
+  int Shifts = 0;
+};
+
+/// Thrown when the user cancelled (on every process).
+class Cancelled : public std::runtime_error
+{
+public:
+  Cancelled()
+    : std::runtime_error("cancelled")
+  {
+  }
+};
+
+/**
+ * The m smallest eigenpairs of the surface whose piece `piece` (triangles only; ghost cells
+ * are left out) this process holds. Collective over all processes of `controller` (nullptr or
+ * one process: a serial run), which must be those of MPI_COMM_WORLD. Initializes SLEPc on
+ * first use (after MPI, which ParaView initializes; SLEPc initializes MPI itself when nobody
+ * did and then finalizes both at exit).
+ * \throws std::runtime_error with a message for the user, vtkManifoldHarmonicsSlepc::Cancelled.
+ */
+Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Settings& settings);
+} // namespace vtkManifoldHarmonicsSlepc
+
+#endif
