@@ -50,6 +50,9 @@ static_assert(
   vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS == spectral::DefaultNumberOfHarmonics,
   "the default number of harmonics has its home in Spectral/Common/Defaults.h");
 static_assert(
+  vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS == spectral::DefaultNumberOfNeighbors,
+  "the default number of neighbours has its home in Spectral/Common/Defaults.h");
+static_assert(
   vtkManifoldHarmonicBasis::NEUMANN == static_cast<int>(spectral::BoundaryCondition::Neumann) &&
     vtkManifoldHarmonicBasis::DIRICHLET == static_cast<int>(spectral::BoundaryCondition::Dirichlet),
   "the boundary conditions have their home in Spectral/Operators/Laplacian.h");
@@ -293,6 +296,7 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.Solver.Tolerance = self->GetTolerance();
   options.Solver.MaxIterations = self->GetMaxIterations();
   options.MinimumComponentSize = self->GetMinimumComponentSize();
+  options.NumberOfNeighbors = self->GetNumberOfNeighbors();
   options.Solver.Threads = self->GetNumberOfThreads();
   options.EigenvaluesOnly = self->GetEigenvaluesOnly();
   options.LowerFrequency = self->GetFrequencyWindow()[0];
@@ -331,6 +335,7 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , BasisPrecision(DOUBLE)
   , MemoryLimit(0.0)
   , MinimumComponentSize(0)
+  , NumberOfNeighbors(DEFAULT_NUMBER_OF_NEIGHBORS)
   , NumberOfThreads(0)
   , EigenvaluesOnly(false)
   , Solver(BUILT_IN)
@@ -396,8 +401,9 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
   if (vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController())
   {
     // The basis is global: never a per-piece basis when several processes hold the mesh. Only
-    // vtkPolyData surfaces are gathered so far (both counts are collective).
-    const bool otherCells = !surface && input->GetNumberOfCells() > 0;
+    // vtkPolyData surfaces are gathered so far (both counts are collective); volumes and
+    // point clouds (points without a surface) are refused.
+    const bool otherCells = !hasSurface && input->GetNumberOfPoints() > 0;
     const int others = vtkManifoldHarmonicsParallel::CountRanks(controller, otherCells);
     if (vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface || otherCells) > 1)
     {
@@ -596,13 +602,13 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
   const vtkManifoldHarmonicsArrays::CoreMesh cells =
     vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
   const std::string problem = cells.Problem();
-  if (!problem.empty() || cells.IsPointCloud())
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< (problem.empty() ? vtkManifoldHarmonicsArrays::PointCloudProblem : problem));
+    vtkErrorMacro(<< problem);
     output->Initialize();
     return 0;
   }
-  if (numPts == 0 || !cells.HasCells())
+  if (numPts == 0 || (!cells.HasCells() && !cells.IsPointCloud()))
   {
     vtkWarningMacro(<< "No polygons or volume cells to compute manifold harmonics on; passing "
                        "the input through.");
@@ -689,6 +695,7 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
      << " MiB (default 0, the memory the system reports available)\n";
   os << indent << "Minimum Component Size: " << this->MinimumComponentSize
      << " (default 0, every component)\n";
+  os << indent << "Number Of Neighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << " (default 0, every core)\n";
   os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off")
      << " (default off)\n";

@@ -152,6 +152,16 @@ public:
     DEFAULT_NUMBER_OF_HARMONICS = 100
   };
 
+  /**
+   * The default NumberOfNeighbors, here and in vtkManifoldHarmonicSmoothing: the wrapped copy
+   * of spectral::DefaultNumberOfNeighbors (Filters/Spectral/Common/Defaults.h; a static_assert
+   * keeps them equal).
+   */
+  enum DefaultNumberOfNeighbors
+  {
+    DEFAULT_NUMBER_OF_NEIGHBORS = 30
+  };
+
   ///@{
   /**
    * Number m of harmonics (eigenpairs) to compute, lowest frequencies first: at least 1 (a
@@ -323,6 +333,18 @@ public:
 
   ///@{
   /**
+   * Point clouds (a point set without cells, or with vertex cells only): the neighbours of each
+   * point whose local Delaunay triangulation builds the point-cloud Laplacian of Sharp and
+   * Crane ("A Laplacian for Nonmanifold Triangle Meshes", SGP 2020); clamped, with a warning, to
+   * the other points of the cloud. Not used for meshes. Range [2, VTK_INT_MAX]. Default is
+   * DEFAULT_NUMBER_OF_NEIGHBORS.
+   */
+  vtkSetClampMacro(NumberOfNeighbors, int, 2, VTK_INT_MAX);
+  vtkGetMacro(NumberOfNeighbors, int);
+  ///@}
+
+  ///@{
+  /**
    * Compute and verify the eigenvalues but do not store the n x m harmonics: the output has the
    * eigenvalues and the mass only (for ShapeDNA with vtkSpectralDescriptors), and the memory
    * check leaves the output basis out. The eigensolver keeps only the vectors of its last bands
@@ -469,6 +491,7 @@ protected:
   int BasisPrecision;
   double MemoryLimit;
   int MinimumComponentSize;
+  int NumberOfNeighbors;
   int NumberOfThreads;
   bool EigenvaluesOnly;
   double FrequencyWindow[2];

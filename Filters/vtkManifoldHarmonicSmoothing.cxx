@@ -66,6 +66,7 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
   , NumberOfThreads(0)
   , BoundaryCondition(vtkManifoldHarmonicBasis::NEUMANN)
+  , NumberOfNeighbors(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS)
   , Solver(vtkManifoldHarmonicBasis::BUILT_IN)
   , SlepcPartitions(1)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
@@ -107,14 +108,9 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   // the internal stages report errors about a basis they did not get. (In a distributed run the
   // stages are collective and every process runs them.)
   const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
-  if (!cells.HasCells() && !vtkManifoldHarmonicsParallel::DistributedController())
+  if (!cells.HasCells() && !cells.IsPointCloud() &&
+    !vtkManifoldHarmonicsParallel::DistributedController())
   {
-    if (cells.IsPointCloud())
-    {
-      vtkErrorMacro(<< vtkManifoldHarmonicsArrays::PointCloudProblem);
-      output->Initialize();
-      return 0;
-    }
     if (input->GetNumberOfPoints() > 0)
     {
       vtkWarningMacro(<< "The input has no polygons or volume cells: passed on unchanged.");
@@ -141,6 +137,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->SetBasisPrecision(this->BasisPrecision);
   this->Basis->SetNumberOfThreads(this->NumberOfThreads);
   this->Basis->SetBoundaryCondition(this->BoundaryCondition);
+  this->Basis->SetNumberOfNeighbors(this->NumberOfNeighbors);
   this->Basis->SetSolver(this->Solver);
   this->Basis->SetSlepcPartitions(this->SlepcPartitions);
   this->Basis->SetSlepcOptions(this->SlepcOptions.c_str());
@@ -214,6 +211,7 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default "
      << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n";
   os << indent << "CutoffFraction: " << this->CutoffFraction << " (default 0.5)\n";
+  os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "BoundaryCondition: "
      << (this->BoundaryCondition == vtkManifoldHarmonicBasis::DIRICHLET ? "Dirichlet" : "Neumann")
      << " (default Neumann)\n";

@@ -144,6 +144,16 @@ public:
 
   ///@{
   /**
+   * The neighbours of each point of a point cloud, passed on to
+   * vtkManifoldHarmonicBasis::SetNumberOfNeighbors (not used for meshes). Range [2,
+   * VTK_INT_MAX]. Default is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS.
+   */
+  vtkSetClampMacro(NumberOfNeighbors, int, 2, VTK_INT_MAX);
+  vtkGetMacro(NumberOfNeighbors, int);
+  ///@}
+
+  ///@{
+  /**
    * The eigensolver of the internal basis, one of vtkManifoldHarmonicBasis' SolverType values
    * (declared there only): vtkManifoldHarmonicBasis::BUILT_IN or vtkManifoldHarmonicBasis::SLEPC
    * (needs vtkManifoldHarmonicBasis::HasSlepc()). Default is vtkManifoldHarmonicBasis::BUILT_IN.
@@ -181,6 +191,7 @@ protected:
   int BasisPrecision;
   int NumberOfThreads;
   int BoundaryCondition;
+  int NumberOfNeighbors;
   int Solver;
   int SlepcPartitions;
   std::string SlepcOptions;

@@ -24,6 +24,7 @@
 #include "vtkTable.h"
 
 #include "Spectral/Operators/Operators.h"
+#include "Spectral/Operators/PointCloud.h"
 
 #include <algorithm>
 #include <cmath>
@@ -591,9 +592,13 @@ std::vector<double> EdgeSums(vtkPointSet* input)
   std::vector<double> sums = { 0.0, 0.0 };
   if (input->GetNumberOfPoints() > 0)
   {
-    const spectral::TriangleMesh mesh = ToCoreMesh(input).Mesh;
-    sums[1] = spectral::EdgeCount(mesh);
-    sums[0] = spectral::MeanEdgeLength(mesh) * sums[1];
+    const CoreMesh cells = ToCoreMesh(input);
+    if (cells.IsPointCloud())
+    {
+      return spectral::CloudEdgeSums(cells.Mesh.Vertices);
+    }
+    sums[1] = spectral::EdgeCount(cells.Mesh);
+    sums[0] = spectral::MeanEdgeLength(cells.Mesh) * sums[1];
   }
   return sums;
 }

@@ -173,12 +173,6 @@ struct CoreMesh
   std::vector<std::string> Warnings() const;
 };
 
-/// The error of the filters given a point cloud (CoreMesh::IsPointCloud).
-constexpr const char* PointCloudProblem =
-  "The input is a point cloud (points and no cells but vertices): point clouds are not "
-  "supported yet. Give a surface (polygons) or a volume (3-D cells), e.g. by reconstructing "
-  "one (Delaunay 3D, Surface reconstruction).";
-
 /// Convert the cells of a point set (see CoreMesh).
 CoreMesh ToCoreMesh(vtkPointSet* input);
 
@@ -191,7 +185,8 @@ int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* ou
 
 /**
  * The sum of the edge lengths of the cells of `input` (ToCoreMesh, ghost cells left out) and
- * their number (spectral::EdgeCount): added over the processes of a distributed run, they give
+ * their number (spectral::EdgeCount), or for a point cloud its spectral::CloudEdgeSums: added
+ * over the processes of a distributed run, they give
  * the Nyquist frequency of the whole mesh, spectral::NyquistFrequency(sums[0], sums[1]).
  */
 std::vector<double> EdgeSums(vtkPointSet* input);

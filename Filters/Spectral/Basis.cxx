@@ -284,34 +284,75 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   const Clock::time_point start = Clock::now();
   BasisResult result;
   monitor.Begin("Assemble");
-  PreparedMesh prepared = LeaveOutSmallComponents(PrepareMesh(mesh), options.MinimumComponentSize);
-  Report(PreparationWarnings(prepared), monitor, result);
-  const Eigen::Index used = prepared.Mesh.Vertices.rows();
-  if (used == 0)
-  {
-    throw InvalidInput(prepared.SmallComponents > 0
-        ? "every connected component is smaller than MinimumComponentSize"
-        : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
-                          : "every triangle of the input is degenerate (zero area)");
-  }
   const bool window = options.UpperFrequency > 0.0;
-  int m = window ? 0
-                 : ClampedHarmonics(options.NumberOfHarmonics,
-                     static_cast<int>(used),
-                     prepared.Volume ? "tetrahedra use" : "triangles use",
-                     monitor,
-                     result);
-  if (options.CheckMemory && !window)
+  const bool cloud = mesh.IsPointCloud();
+  PreparedMesh prepared;
+  DiscreteLaplacian ops;
+  int m = 0;
+  double s = 1.0;
+  if (cloud)
   {
-    CheckMemory(mesh, used, m, options);
+    // A point cloud: the operators of PointCloudLaplacian, in the same units as a mesh's.
+    if (options.Operators.Laplacian != LaplacianKind::Cotangent ||
+      options.Operators.Boundary != BoundaryCondition::Neumann || options.MinimumComponentSize > 0)
+    {
+      Report({ "A point cloud has its own Laplacian (Sharp and Crane's, on the local Delaunay "
+               "triangulations of its neighbourhoods) with natural conditions: the Laplacian, "
+               "BoundaryCondition and MinimumComponentSize settings do not apply to it." },
+        monitor,
+        result);
+    }
+    s = UnitScale(BoundingBoxDiagonal(mesh.Vertices));
+    PointCloudOptions cloudOptions;
+    cloudOptions.NumberOfNeighbors = options.NumberOfNeighbors;
+    cloudOptions.Mass = options.Operators.Mass;
+    ops = PointCloudLaplacian(Points(mesh.Vertices / s), cloudOptions, monitor.Scaled(0.0, 0.1));
+    Report(ops.Warnings, monitor, result);
+    const Eigen::Index used = ops.Stiffness.rows();
+    if (!window)
+    {
+      m = ClampedHarmonics(options.NumberOfHarmonics,
+        static_cast<int>(used),
+        "the point cloud triangulates",
+        monitor,
+        result);
+      if (options.CheckMemory)
+      {
+        CheckMemory(mesh, used, m, options);
+      }
+    }
   }
+  else
+  {
+    prepared = LeaveOutSmallComponents(PrepareMesh(mesh), options.MinimumComponentSize);
+    Report(PreparationWarnings(prepared), monitor, result);
+    const Eigen::Index used = prepared.Mesh.Vertices.rows();
+    if (used == 0)
+    {
+      throw InvalidInput(prepared.SmallComponents > 0
+          ? "every connected component is smaller than MinimumComponentSize"
+          : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
+                            : "every triangle of the input is degenerate (zero area)");
+    }
+    m = window ? 0
+               : ClampedHarmonics(options.NumberOfHarmonics,
+                   static_cast<int>(used),
+                   prepared.Volume ? "tetrahedra use" : "triangles use",
+                   monitor,
+                   result);
+    if (options.CheckMemory && !window)
+    {
+      CheckMemory(mesh, used, m, options);
+    }
 
-  // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an area
-  // or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
-  const double s = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
-  prepared.Mesh.Vertices /= s;
-  DiscreteLaplacian ops = AssembleLaplacian(prepared, options.Operators, monitor);
-  Report(ops.Warnings, monitor, result);
+    // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an
+    // area or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
+    s = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
+    prepared.Mesh.Vertices /= s;
+    ops = AssembleLaplacian(prepared, options.Operators, monitor);
+    Report(ops.Warnings, monitor, result);
+  }
+  const Eigen::Index used = ops.Stiffness.rows();
   result.BoundaryPoints = ops.BoundaryPoints;
   if (!window && ops.Stiffness.rows() < m)
   {

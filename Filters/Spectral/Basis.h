@@ -26,6 +26,7 @@
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
 #include "Operators/Laplacian.h"
+#include "Operators/PointCloud.h"
 #include "Solver/Components.h"
 #include "Solver/EigenSolver.h"
 #include "Solver/Memory.h"
@@ -43,6 +44,9 @@ struct BasisOptions
   int NumberOfHarmonics = DefaultNumberOfHarmonics;
   /// The operators.
   LaplacianOptions Operators;
+  /// The neighbours of each point of a point cloud (PointCloudLaplacian; its Mass is
+  /// Operators.Mass).
+  int NumberOfNeighbors = DefaultNumberOfNeighbors;
   /// Connected components of fewer points are left out (zero harmonics and mass, a warning);
   /// 0 keeps every component.
   int MinimumComponentSize = 0;

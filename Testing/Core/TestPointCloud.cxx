@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Properties of the point-cloud Laplacian (Filters/Spectral/Operators/PointCloud.h) and of its
 // nearest-neighbour search (Operators/NearestNeighbors.h).
+#include "Basis.h"
 #include "Checks.h"
 #include "Common/Threads.h"
 #include "Filtering/Transfer.h"
@@ -314,6 +315,51 @@ void SphereSpectrum()
 }
 
 //------------------------------------------------------------------------------
+void ComputeBasisTakesClouds()
+{
+  // A mesh without cells is a point cloud for the core's entry point: the same pairs as the
+  // operators solved directly, in the units of the cloud (a sphere of radius 1000: lambda / 1e6,
+  // the mass 1e6 times), verified, with the cloud's warnings passed on.
+  const Points cloud = SphereCloud(3000, 3);
+  TriangleMesh points;
+  points.Vertices = cloud;
+  BasisOptions options;
+  options.NumberOfHarmonics = 16;
+  const BasisResult basis = ComputeBasis(points, options);
+  const EigenResult direct = Solve(PointCloudLaplacian(cloud, PointCloudOptions()), 16);
+  double worst = 0.0;
+  for (Eigen::Index k = 1; k < 16; ++k)
+  {
+    worst = std::max(
+      worst, std::abs(basis.Pairs.Eigenvalues[k] - direct.Eigenvalues[k]) / direct.Eigenvalues[k]);
+  }
+  CheckBelow(worst, 1e-9, "ComputeBasis on a cloud: the eigenvalues of its operators");
+  Check(basis.Pairs.Eigenvectors.rows() == 3000 && basis.Pairs.Eigenvectors.cols() == 16 &&
+      basis.InputPointIds.size() == 3000,
+    "3000 rows of 16 harmonics");
+  TriangleMesh large = points;
+  large.Vertices *= 1000.0;
+  const BasisResult scaled = ComputeBasis(large, options);
+  CheckBelow((scaled.Pairs.Eigenvalues * 1e6 - basis.Pairs.Eigenvalues).cwiseAbs().maxCoeff() /
+      basis.Pairs.Eigenvalues[15],
+    1e-9,
+    "radius 1000: the eigenvalues divided by 1e6");
+  CheckNear(scaled.LumpedMass.sum() / basis.LumpedMass.sum(), 1e6, 1e-6, "and the mass 1e6 times");
+  points.Vertices.row(7) = points.Vertices.row(3);
+  options.MinimumComponentSize = 10;
+  const BasisResult warned = ComputeBasis(points, options);
+  bool duplicate = false;
+  bool notApplied = false;
+  for (const std::string& text : warned.Warnings)
+  {
+    duplicate = duplicate || text.find("uplicate") != std::string::npos;
+    notApplied = notApplied || text.find("do not apply") != std::string::npos;
+  }
+  Check(duplicate && notApplied && warned.InputPointIds.size() == 2999,
+    "a duplicated point left out and a setting that does not apply, with warnings");
+}
+
+//------------------------------------------------------------------------------
 void FlatSquare()
 {
   const DiscreteLaplacian ops = PointCloudLaplacian(SquareCloud(10000, 2), PointCloudOptions());
@@ -600,6 +646,7 @@ const Case Cases[] = {
   { "NearestNeighborsMatchBruteForce", NearestNeighborsMatchBruteForce },
   { "LocalRingIsDelaunay", LocalRingIsDelaunay },
   { "SphereSpectrum", SphereSpectrum },
+  { "ComputeBasisTakesClouds", ComputeBasisTakesClouds },
   { "FlatSquare", FlatSquare },
   { "RigidMotionInvariance", RigidMotionInvariance },
   { "ConsistentMass", ConsistentMass },

@@ -47,6 +47,11 @@ struct TriangleMesh
   Tetrahedra Tets;
   /// Whether this is a volume (it has tetrahedra).
   bool IsVolume() const { return this->Tets.rows() > 0; }
+  /// A point cloud: points and no cells (ComputeBasis then uses PointCloudLaplacian).
+  bool IsPointCloud() const
+  {
+    return this->Vertices.rows() > 0 && this->Faces.rows() == 0 && this->Tets.rows() == 0;
+  }
 };
 
 /// Thrown when the input cannot be processed (bad indices, NaN coordinates, too many eigenpairs).

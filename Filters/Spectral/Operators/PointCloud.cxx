@@ -487,4 +487,35 @@ DiscreteLaplacian PointCloudLaplacian(const Points& points,
   monitor.Report(1.0);
   return out;
 }
+
+//------------------------------------------------------------------------------
+std::vector<double> CloudEdgeSums(const Points& points)
+{
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+  {
+    if (points.row(i).allFinite())
+    {
+      rows.push_back(static_cast<int>(i));
+    }
+  }
+  std::vector<double> sums = { 0.0, 0.0 };
+  if (rows.size() < 2)
+  {
+    return sums;
+  }
+  const Points finite = points(rows, Eigen::all);
+  const NearestNeighbors tree(finite);
+  std::vector<Neighbor> near;
+  for (Eigen::Index i = 0; i < finite.rows(); ++i)
+  {
+    tree.Nearest(finite.row(i).transpose(), NyquistNeighbors, static_cast<int>(i), near);
+    for (const Neighbor& neighbor : near)
+    {
+      sums[0] += std::sqrt(neighbor.first);
+      sums[1] += 1.0;
+    }
+  }
+  return sums;
+}
 } // namespace spectral

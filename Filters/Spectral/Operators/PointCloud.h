@@ -124,6 +124,18 @@ DiscreteLaplacian PointCloudLaplacian(const Points& points,
 std::vector<std::array<int, 2>> LocalDelaunayRing(const std::vector<Eigen::Vector2d>& neighbors,
   double maxCircumradius,
   double tiny);
+
+/// The neighbours of each point whose distances stand for its edges in the Nyquist frequency of
+/// a cloud: 6, the mean valence of a triangulated surface.
+constexpr int NyquistNeighbors = 6;
+
+/**
+ * The edge sums behind the Nyquist frequency of a point cloud, NyquistFrequency(sums[0],
+ * sums[1]) (Filtering/Transfer.h): the distances from each point to its NyquistNeighbors
+ * nearest others (its edges in a triangulation of the cloud), summed, and their number. Points
+ * with a non-finite coordinate are left out; {0, 0} for fewer than two points.
+ */
+std::vector<double> CloudEdgeSums(const Points& points);
 } // namespace spectral
 
 #endif

@@ -4,8 +4,8 @@
 // filter, the smoothing and the descriptors take any vtkPointSet and give its type; tetrahedra
 // give the harmonics of the solid (analytic eigenvalues of the cube), hexahedra, voxels, wedges
 // and pyramids are split into conforming tetrahedra (with a warning), Dirichlet boundary points
-// pass through the filters unchanged, and a mix of 2-D and 3-D cells, unsupported cells and
-// point clouds are errors.
+// pass through the filters unchanged, a mix of 2-D and 3-D cells and unsupported cells are
+// errors; point clouds (no cells, or vertex cells) get the point-cloud Laplacian's harmonics.
 #include "ManifoldHarmonicsTestUtilities.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
@@ -17,6 +17,7 @@
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicSmoothing.h"
 #include "vtkManifoldHarmonicTransform.h"
+#include "vtkMath.h"
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -408,11 +409,115 @@ bool TestErrors()
   quadratic->InsertNextCell(VTK_QUADRATIC_TETRA, 10, ids);
   ok &=
     Check(expectError(quadratic, "vtkQuadraticTetra"), "a quadratic cell is an error naming it");
+  return ok;
+}
 
-  vtkSmartPointer<vtkPolyData> cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  ok &= Check(expectError(cloud, "point clouds are not supported yet"),
-    "a point cloud is an error, not a crash");
+//------------------------------------------------------------------------------
+// Point clouds: the unit sphere's spectrum from points alone (in a vtkPolyData without cells
+// and in an unstructured grid of vertex cells, alike), and noisy points low-passed back towards
+// the sphere by the filter and by the smoothing, which keep the input's type.
+bool TestPointClouds()
+{
+  const int n = 4000;
+  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
+  vtkNew<vtkPoints> clean;
+  vtkNew<vtkPoints> noisy;
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(5);
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n;
+    const double r = std::sqrt(1.0 - z * z);
+    const double p[3] = { r * std::cos(golden * i), r * std::sin(golden * i), z };
+    clean->InsertNextPoint(p);
+    random->Next();
+    const double scale = 1.0 + 0.02 * (2.0 * random->GetValue() - 1.0);
+    noisy->InsertNextPoint(scale * p[0], scale * p[1], scale * p[2]);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(clean);
+  vtkNew<vtkUnstructuredGrid> vertices;
+  vertices->SetPoints(clean);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    vertices->InsertNextCell(VTK_VERTEX, 1, &i);
+  }
+  std::vector<std::vector<double>> spectra;
+  bool ok = true;
+  for (vtkPointSet* input :
+    { static_cast<vtkPointSet*>(cloud), static_cast<vtkPointSet*>(vertices) })
+  {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    basis->SetInputData(input);
+    basis->SetNumberOfHarmonics(16);
+    basis->Update();
+    vtkDataArray* lambda = basis->GetOutput()->GetFieldData()->GetArray(
+      vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+    ok &= Check(lambda && lambda->GetNumberOfTuples() == 16 &&
+        std::string(basis->GetOutput()->GetClassName()) == input->GetClassName(),
+      std::string("a ") + input->GetClassName() + " cloud: 16 eigenvalues, the input's type");
+    if (!lambda || lambda->GetNumberOfTuples() != 16)
+    {
+      return false;
+    }
+    std::vector<double> values;
+    double worst = 0.0;
+    for (int l = 1; l <= 3; ++l)
+    {
+      for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+      {
+        worst = std::max(worst, std::abs(lambda->GetTuple1(k) - l * (l + 1.0)) / (l * (l + 1.0)));
+      }
+    }
+    for (int k = 0; k < 16; ++k)
+    {
+      values.push_back(lambda->GetTuple1(k));
+    }
+    spectra.push_back(values);
+    std::cout << input->GetClassName()
+              << " cloud: worst |lambda - l(l+1)| / l(l+1), l <= 3: " << worst << std::endl;
+    ok &= Check(worst < 0.03, "the sphere's eigenvalues l(l+1) within 3%");
+  }
+  ok &= Check(spectra[0] == spectra[1], "vertex cells or none: the same spectrum");
+
+  // Radial RMS error of the noisy cloud, then low-passed (cutoff omega = 4: l <= 3).
+  const auto radialError = [](vtkPoints* points)
+  {
+    double sum = 0.0;
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      points->GetPoint(i, p);
+      sum += std::pow(vtkMath::Norm(p) - 1.0, 2);
+    }
+    return std::sqrt(sum / points->GetNumberOfPoints());
+  };
+  vtkNew<vtkPolyData> noisyCloud;
+  noisyCloud->SetPoints(noisy);
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputData(noisyCloud);
+  basis->SetNumberOfHarmonics(100);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputConnection(basis->GetOutputPort());
+  vtkNew<vtkSpectralFilter> filter;
+  filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetFilterKindToLowPass();
+  filter->SetCutoff(4.0);
+  filter->Update();
+  const double before = radialError(noisy);
+  const double after = radialError(filter->GetPolyDataOutput()->GetPoints());
+  std::cout << "noisy cloud: radial RMS " << before << " -> " << after << " (filter, Nyquist "
+            << filter->GetNyquistFrequency() << ")" << std::endl;
+  ok &= Check(after < 0.2 * before && filter->GetNyquistFrequency() > 10.0,
+    "the low-passed cloud is at least 5 times closer to the sphere, with a Nyquist frequency");
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(noisyCloud);
+  smoothing->SetNumberOfHarmonics(100);
+  smoothing->Update();
+  const double smoothed = radialError(smoothing->GetPolyDataOutput()->GetPoints());
+  std::cout << "noisy cloud: radial RMS " << before << " -> " << smoothed << " (smoothing)"
+            << std::endl;
+  ok &= Check(smoothed < 0.5 * before, "the smoothing of a cloud brings it closer to the sphere");
   return ok;
 }
 
@@ -471,6 +576,7 @@ int TestVolumeHarmonics(int, char*[])
   bool ok = TestTetrahedra();
   ok &= TestSplitCells();
   ok &= TestErrors();
+  ok &= TestPointClouds();
   ok &= TestSmoothing();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
