@@ -2,7 +2,8 @@
 # The demo: install what is needed, build into ${BUILD_DIR:-build}, then compute the manifold
 # harmonic basis of the Stanford bunny (Testing/Data/bunny.ply) and denoise a noisy copy of it.
 # Writes demo-output/bunny_basis.vtp, demo-output/harmonics.png and demo-output/denoise.png, then
-# the harmonics of a tetrahedral ball on slices (demo-output/volume-harmonic.png).
+# the harmonics of a tetrahedral ball on slices (demo-output/volume-harmonic.png) and the bunny's
+# points as a noisy point cloud, denoised (demo-output/denoised-cloud.png).
 # Environment: BUILD_DIR (default build), JOBS (default 2), SKIP_DEPS=1 to skip install-deps.sh,
 # OUTPUT (default demo-output).
 set -euo pipefail
@@ -35,3 +36,5 @@ fi
 "${runner[@]}" pvpython "${source_dir}/Examples/Python/demo.py" \
   "${source_dir}/Testing/Data/bunny.ply" "${output}"
 "${runner[@]}" pvpython "${source_dir}/Examples/Python/volume_demo.py" "${output}"
+"${runner[@]}" pvpython "${source_dir}/Examples/Python/cloud_demo.py" \
+  "${source_dir}/Testing/Data/bunny.ply" "${output}"
