@@ -12,8 +12,8 @@ scanner's depth error; fixed seed; the triangles give the normals and are then d
 HARMONICS (default 300) harmonics of the noisy cloud's point-cloud Laplacian with Manifold
 Harmonic Basis, low-passes the coordinates (Manifold Harmonic Transform + Spectral Filter, the
 lowest 80% of the computed frequencies kept), prints the RMS distance of the noisy and of the
-denoised points to the clean ones (in mean spacings; an error unless denoising divides it by
-REDUCTION) and writes OUTPUT_DIR/denoised-cloud.png: the noisy and the denoised cloud, same camera.
+denoised points to the clean surface (the bunny's triangles; in mean spacings; an error unless
+denoising divides it by REDUCTION) and writes OUTPUT_DIR/denoised-cloud.png: the noisy and the denoised cloud, same camera.
 """
 
 import math
@@ -21,8 +21,8 @@ import os
 import sys
 
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkCommonCore import mutable, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellLocator, vtkPolyData
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkFiltersCore import vtkGlyph3D, vtkPolyDataNormals
 from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -39,9 +39,9 @@ import numpy as np
 
 NOISE = 0.5  # RMS of the noise along the normals, in mean nearest-neighbour spacings
 SEED = 25
-# The least noise reduction accepted. Noise along random directions is not removable: its
-# tangential part only moves points along the surface (see --random-directions).
-REDUCTION = 1.25
+# The least noise reduction accepted (measured here: 1.76 for noise along the normals, 1.66
+# along random directions, whose tangential part only moves points along the surface).
+REDUCTION = 1.5
 
 
 def mean_spacing(points):
@@ -137,8 +137,20 @@ def main():
     lowpass.Update()
     denoised = vtk_to_numpy(lowpass.GetOutput().GetPoints().GetData()).astype(np.float64)
 
+    # The distance of each point to the clean surface (the bunny's triangles): what denoising is
+    # for. (Points also drift along the surface; that changes the sampling, not the shape.)
+    locator = vtkCellLocator()
+    locator.SetDataSet(reader.GetOutput())
+    locator.BuildLocator()
+
     def rms(points):
-        return float(np.sqrt(np.mean(np.sum((points - clean) ** 2, axis=1)))) / spacing
+        closest = [0.0, 0.0, 0.0]
+        cell, sub, distance2 = mutable(0), mutable(0), mutable(0.0)
+        total = 0.0
+        for p in points:
+            locator.FindClosestPoint(p.tolist(), closest, cell, sub, distance2)
+            total += float(distance2)
+        return math.sqrt(total / len(points)) / spacing
 
     before, after = rms(noisy), rms(denoised)
     print("point cloud: %d points of %s, no cells, mean nearest-neighbour spacing %.4g"
@@ -148,10 +160,10 @@ def main():
         else "RMS along the normals (Gaussian)", SEED))
     print("  low-pass: %d harmonics, %d neighbours, cutoff omega = %.3g (lambda_%d)"
           % (m, basis.GetNumberOfNeighbors(), cutoff, (4 * m) // 5))
-    print("  RMS distance to the clean points: noisy %.3f, denoised %.3f spacings (%.2fx smaller)"
+    print("  RMS distance to the clean surface: noisy %.3f, denoised %.3f spacings (%.2fx smaller)"
           % (before, after, before / after if after > 0 else float("inf")))
     if not after * REDUCTION <= before:
-        print("ERROR: denoising did not divide the RMS distance to the clean points by %g"
+        print("ERROR: denoising did not divide the RMS distance to the clean surface by %g"
               % REDUCTION)
         return 1
 
