@@ -302,6 +302,12 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
         monitor,
         result);
     }
+    // Every point of a cloud is a candidate, and the unit comes from all of them: a coordinate
+    // beyond MaxCoordinate (even of a point left out later) would make the others vanish in it.
+    for (Eigen::Index i = 0; i < mesh.Vertices.rows(); ++i)
+    {
+      CheckCoordinates(mesh.Vertices, i);
+    }
     s = UnitScale(BoundingBoxDiagonal(mesh.Vertices));
     PointCloudOptions cloudOptions;
     cloudOptions.NumberOfNeighbors = options.NumberOfNeighbors;

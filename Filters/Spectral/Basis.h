@@ -133,7 +133,8 @@ double UnitScale(double diameter);
  * \param options m, operators, solver settings, memory check.
  * \param monitor Progress in [0, 1] (0.1 at the end of the assembly), cancellation, the names
  *        of the steps ("Assemble", "Eigensolve") and warnings as soon as they are known.
- * \throws InvalidInput for an index out of range, a non-finite coordinate on a used point, a
+ * \throws InvalidInput for an index out of range, a non-finite coordinate on a used point (on
+ *         any point of a point cloud, or one beyond MaxCoordinate), a
  *         mesh whose cells are all degenerate, a mesh with both triangles and tetrahedra, a
  *         Dirichlet condition with no interior point, NumberOfHarmonics below 1, or a frequency
  *         window that is empty or holds no eigenvalue.

@@ -668,7 +668,11 @@ void EigenvaluesOnly()
   options.EigenvaluesOnly = false;
   CheckThrows<InsufficientMemory>(
     [&]() { ComputeBasis(Icosphere(3), options); }, "the same limit refuses the basis");
+}
 
+//------------------------------------------------------------------------------
+void SpectrumAloneInBands()
+{
   // A solve in many bands (10,242 points, 400 pairs): without harmonics the solver keeps only
   // the vectors its seams need, and gives the same verified eigenvalues.
   BasisOptions bands;
@@ -713,6 +717,7 @@ const Case Cases[] = {
   { "ThreadsMatchOneThread", ThreadsMatchOneThread },
   { "FrequencyWindow", FrequencyWindow },
   { "EigenvaluesOnly", EigenvaluesOnly },
+  { "SpectrumAloneInBands", SpectrumAloneInBands },
 };
 } // namespace
 
