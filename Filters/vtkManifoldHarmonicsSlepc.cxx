@@ -605,6 +605,202 @@ Slice SolveSlice(OwnedEPS& eps,
   std::sort(slice.Order.begin(), slice.Order.end());
   return slice;
 }
+//------------------------------------------------------------------------------
+// Copies the values of a distributed vector (owned rows) to the piece's points that use them,
+// seam copies included (from their owners, by a PETSc scatter).
+class RowWriter
+{
+public:
+  /// `layout`: any vector of the operators' row layout; `global`: the global number of each
+  /// used point; `tuples`: its point id in the piece.
+  RowWriter(Vec layout, const std::vector<PetscInt>& global, const std::vector<int>& tuples)
+    : Tuples(tuples)
+  {
+    OwnedIS from;
+    MH_PETSC(ISCreateGeneral(PETSC_COMM_SELF,
+      static_cast<PetscInt>(global.size()),
+      global.data(),
+      PETSC_COPY_VALUES,
+      &from.Object));
+    MH_PETSC(
+      VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(global.size()), &this->Local.Object));
+    MH_PETSC(
+      VecScatterCreate(layout, from.Object, this->Local.Object, nullptr, &this->Scatter.Object));
+  }
+
+  /// Calls store(point id, value) for every used point (collective).
+  void Write(Vec values, const std::function<void(vtkIdType, double)>& store)
+  {
+    MH_PETSC(VecScatterBegin(
+      this->Scatter.Object, values, this->Local.Object, INSERT_VALUES, SCATTER_FORWARD));
+    MH_PETSC(VecScatterEnd(
+      this->Scatter.Object, values, this->Local.Object, INSERT_VALUES, SCATTER_FORWARD));
+    const PetscScalar* local = nullptr;
+    MH_PETSC(VecGetArrayRead(this->Local.Object, &local));
+    for (std::size_t i = 0; i < this->Tuples.size(); ++i)
+    {
+      store(this->Tuples[i], local[i]);
+    }
+    MH_PETSC(VecRestoreArrayRead(this->Local.Object, &local));
+  }
+
+private:
+  const std::vector<int>& Tuples;
+  OwnedVec Local;
+  OwnedScatter Scatter;
+};
+
+//------------------------------------------------------------------------------
+// The checks of one eigenpair with the core's definitions (Verification.h): the D^-1-weighted
+// norm of the residual Q x - lambda D x (relative to the spectrum's scale later, once every
+// eigenvalue is known) and the componentwise backward error
+// max_i |r_i| / max((|Q| |x| + |lambda| D |x|)_i, floor).
+struct PairError
+{
+  double ResidualNorm = 0.0;
+  double Backward = 0.0;
+};
+
+class PairChecks
+{
+public:
+  PairChecks(Mat Q, Mat D)
+    : Q(Q)
+    , D(D)
+  {
+    MH_PETSC(MatDuplicate(Q, MAT_COPY_VALUES, &this->AbsQ.Object));
+    PetscInt first = 0;
+    PetscInt end = 0;
+    MH_PETSC(MatGetOwnershipRange(Q, &first, &end));
+    std::vector<PetscScalar> values;
+    for (PetscInt row = first; row < end; ++row)
+    {
+      PetscInt count = 0;
+      const PetscInt* cols = nullptr;
+      const PetscScalar* entries = nullptr;
+      MH_PETSC(MatGetRow(Q, row, &count, &cols, &entries));
+      values.assign(entries, entries + count);
+      for (PetscScalar& value : values)
+      {
+        value = std::abs(value);
+      }
+      const PetscErrorCode set =
+        MatSetValues(this->AbsQ.Object, 1, &row, count, cols, values.data(), INSERT_VALUES);
+      MH_PETSC(MatRestoreRow(Q, row, &count, &cols, &entries));
+      MH_PETSC(set);
+    }
+    MH_PETSC(MatAssemblyBegin(this->AbsQ.Object, MAT_FINAL_ASSEMBLY));
+    MH_PETSC(MatAssemblyEnd(this->AbsQ.Object, MAT_FINAL_ASSEMBLY));
+    MH_PETSC(MatCreateVecs(Q, &this->Qx.Object, &this->Dx.Object));
+    MH_PETSC(MatCreateVecs(Q, &this->AbsX.Object, &this->Scale.Object));
+    MH_PETSC(MatCreateVecs(Q, &this->AbsDx.Object, nullptr));
+    // Row sums of D (the lumped weights of the residual norm) and trace(Q) / mass.
+    MH_PETSC(VecSet(this->AbsX.Object, 1.0));
+    MH_PETSC(MatMult(D, this->AbsX.Object, this->Scale.Object));
+    this->RowSum.resize(static_cast<std::size_t>(end - first));
+    const PetscScalar* sums = nullptr;
+    MH_PETSC(VecGetArrayRead(this->Scale.Object, &sums));
+    std::copy(sums, sums + (end - first), this->RowSum.begin());
+    MH_PETSC(VecRestoreArrayRead(this->Scale.Object, &sums));
+    PetscScalar mass = 0.0;
+    PetscScalar trace = 0.0;
+    MH_PETSC(VecSum(this->Scale.Object, &mass));
+    MH_PETSC(MatGetDiagonal(Q, this->Qx.Object));
+    MH_PETSC(VecSum(this->Qx.Object, &trace));
+    this->TraceOverMass = trace / std::max(mass, 1e-300);
+  }
+
+  /// Scales x to unit D-norm, stores D x (owned rows) in dx and checks the pair (collective).
+  PairError NormalizeAndCheck(Vec x, double lambda, double* dx)
+  {
+    MH_PETSC(MatMult(this->D, x, this->Dx.Object));
+    PetscScalar norm2 = 0.0;
+    MH_PETSC(VecDot(x, this->Dx.Object, &norm2));
+    const double inverse = 1.0 / std::sqrt(PetscRealPart(norm2));
+    MH_PETSC(VecScale(x, inverse));
+    MH_PETSC(VecScale(this->Dx.Object, inverse));
+    const PetscScalar* values = nullptr;
+    MH_PETSC(VecGetArrayRead(this->Dx.Object, &values));
+    std::copy(values, values + this->RowSum.size(), dx);
+    MH_PETSC(VecRestoreArrayRead(this->Dx.Object, &values));
+    MH_PETSC(MatMult(this->Q, x, this->Qx.Object));
+    MH_PETSC(VecAXPY(this->Qx.Object, -lambda, this->Dx.Object));
+    MH_PETSC(VecCopy(x, this->AbsX.Object));
+    MH_PETSC(VecAbs(this->AbsX.Object));
+    MH_PETSC(MatMult(this->AbsQ.Object, this->AbsX.Object, this->Scale.Object));
+    MH_PETSC(MatMult(this->D, this->AbsX.Object, this->AbsDx.Object));
+    MH_PETSC(VecAXPY(this->Scale.Object, std::abs(lambda), this->AbsDx.Object));
+    PetscReal largest = 0.0;
+    MH_PETSC(VecMax(this->Scale.Object, nullptr, &largest));
+    const double floor = spectral::detail::BackwardErrorFloor * largest;
+    const PetscScalar* r = nullptr;
+    const PetscScalar* denominators = nullptr;
+    MH_PETSC(VecGetArrayRead(this->Qx.Object, &r));
+    MH_PETSC(VecGetArrayRead(this->Scale.Object, &denominators));
+    double sums[2] = { 0.0, 0.0 }; // sum r^2 / d, and the largest backward ratio
+    for (std::size_t i = 0; i < this->RowSum.size(); ++i)
+    {
+      sums[0] += r[i] * r[i] / this->RowSum[i];
+      const double error = std::abs(r[i]);
+      if (error > 0.0)
+      {
+        const double denominator = std::max(denominators[i], floor);
+        sums[1] = std::max(sums[1],
+          denominator > 0.0 ? error / denominator : std::numeric_limits<double>::infinity());
+      }
+    }
+    MH_PETSC(VecRestoreArrayRead(this->Qx.Object, &r));
+    MH_PETSC(VecRestoreArrayRead(this->Scale.Object, &denominators));
+    const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(this->Q));
+    double global[2];
+    MPI_Allreduce(&sums[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(&sums[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, comm);
+    return { std::sqrt(global[0]), global[1] };
+  }
+
+  /// trace(Q) / total mass: the floor of the spectrum's scale for the relative residual.
+  double TraceOverMass = 0.0;
+
+private:
+  Mat Q;
+  Mat D;
+  OwnedMat AbsQ;
+  std::vector<double> RowSum;
+  OwnedVec Qx;
+  OwnedVec Dx;
+  OwnedVec AbsX;
+  OwnedVec Scale;
+  OwnedVec AbsDx;
+};
+
+//------------------------------------------------------------------------------
+// H^T Y for the first `columns` harmonics H already written in `rows` (row-major, m values a
+// point), read at the points of the owned rows (`ownedTuples`, one per row of Y).
+spectral::DenseMatrix WrittenTimes(const double* rows,
+  int m,
+  int columns,
+  const std::vector<vtkIdType>& ownedTuples,
+  const spectral::DenseMatrix& Y)
+{
+  spectral::DenseMatrix product = spectral::DenseMatrix::Zero(columns, Y.cols());
+  if (columns == 0)
+  {
+    return product;
+  }
+  const Eigen::Index block = 256;
+  spectral::DenseMatrix gathered(block, columns);
+  for (Eigen::Index r0 = 0; r0 < Y.rows(); r0 += block)
+  {
+    const Eigen::Index count = std::min(block, Y.rows() - r0);
+    for (Eigen::Index t = 0; t < count; ++t)
+    {
+      gathered.row(t) =
+        Eigen::Map<const Eigen::RowVectorXd>(rows + ownedTuples[r0 + t] * m, columns);
+    }
+    product.noalias() += gathered.topRows(count).transpose() * Y.middleRows(r0, count);
+  }
+  return product;
+}
 } // anonymous namespace
 
 namespace vtkManifoldHarmonicsSlepc
@@ -766,13 +962,39 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
       std::to_string(size) + " processes of the run.");
     partitions = size;
   }
-  const int slices = std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics);
   const PetscInt owned = numbering.OwnedCount;
-  spectral::DenseMatrix X(owned, m);
+  const int slices = std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics);
+
+  // The rows of this piece's points are the only full copy of the harmonics a process keeps:
+  // each slice's pairs are checked, then written there (seam copies from their owners), and
+  // the D-orthonormality of later slices is measured against the written rows.
+  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  vtkManifoldHarmonicsParallel::PieceBasis& rows = result.Rows;
+  rows.Harmonics = vtkSmartPointer<vtkDoubleArray>::New();
+  rows.Harmonics->SetNumberOfComponents(std::max(m, 1));
+  rows.Harmonics->SetNumberOfTuples(n);
+  rows.Harmonics->FillValue(0.0);
+  double* harmonics = rows.Harmonics->GetPointer(0);
+  RowWriter writer(lumped.Object, numbering.Global, prepared.InputPointIds);
+  std::vector<vtkIdType> ownedTuples(static_cast<std::size_t>(owned));
+  {
+    PetscInt first = 0;
+    PetscInt end = 0;
+    MH_PETSC(MatGetOwnershipRange(Q.Object, &first, &end));
+    for (Eigen::Index i = 0; i < used; ++i)
+    {
+      if (numbering.Owned[i])
+      {
+        ownedTuples[numbering.Global[i] - first] = prepared.InputPointIds[i];
+      }
+    }
+  }
+  PairChecks checks(Q.Object, D.Object);
   spectral::Vector lambda(m);
-  std::vector<OwnedVec> columns(static_cast<std::size_t>(m));
-  OwnedVec work;
-  MH_PETSC(MatCreateVecs(Q.Object, &work.Object, nullptr));
+  std::vector<double> residualNorms(static_cast<std::size_t>(m), 0.0);
+  std::vector<double> backwardErrors(static_cast<std::size_t>(m), 0.0);
+  spectral::DenseMatrix gram = spectral::DenseMatrix::Zero(m, m);
+  const double inverseScale = 1.0 / s;
   int found = 0;
   for (int j = 0; j < slices && found < m; ++j)
   {
@@ -787,20 +1009,31 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     result.InertiaCount += static_cast<int>(slice.Count);
     result.Computed += static_cast<int>(slice.Order.size());
     result.Shifts += static_cast<int>(slice.Shifts);
-    // The smallest, D-normalized, in storage of our own (one column per pair, owned rows).
-    for (std::size_t i = 0; i < slice.Order.size() && found < m; ++i, ++found)
+    // The smallest pairs of the slice, D-normalized and checked, in storage of our own.
+    const int count = std::min(static_cast<int>(slice.Order.size()), m - found);
+    spectral::DenseMatrix Y(owned, count);
+    spectral::DenseMatrix DY(owned, count);
+    for (int c = 0; c < count; ++c)
     {
-      lambda[found] = slice.Order[i].first;
-      MH_PETSC(VecCreateMPIWithArray(
-        comm, 1, owned, numbering.Total, X.col(found).data(), &columns[found].Object));
+      const int k = found + c;
+      lambda[k] = slice.Order[c].first;
+      OwnedVec column;
       MH_PETSC(
-        EPSGetEigenvector(eps.Object, slice.Order[i].second, columns[found].Object, nullptr));
-      MH_PETSC(MatMult(D.Object, columns[found].Object, work.Object));
-      PetscScalar norm2 = 0.0;
-      MH_PETSC(VecDot(columns[found].Object, work.Object, &norm2));
-      MH_PETSC(VecScale(columns[found].Object, 1.0 / std::sqrt(PetscRealPart(norm2))));
+        VecCreateMPIWithArray(comm, 1, owned, numbering.Total, Y.col(c).data(), &column.Object));
+      MH_PETSC(EPSGetEigenvector(eps.Object, slice.Order[c].second, column.Object, nullptr));
+      const PairError error = checks.NormalizeAndCheck(column.Object, lambda[k], DY.col(c).data());
+      residualNorms[k] = error.ResidualNorm;
+      backwardErrors[k] = error.Backward;
+      result.MaxBackwardError = std::max(result.MaxBackwardError, error.Backward);
+      writer.Write(column.Object,
+        [&](vtkIdType tuple, double value) { harmonics[tuple * m + k] = value * inverseScale; });
     }
-    progress(0.2 + 0.65 * (j + 1) / slices);
+    // Gram matrix X^T D X, the columns of this slice: against the written rows of the earlier
+    // slices (in the mesh's units, hence s), and within the slice.
+    gram.block(0, found, found, count) = s * WrittenTimes(harmonics, m, found, ownedTuples, DY);
+    gram.block(found, found, count, count).noalias() = Y.transpose() * DY;
+    found += count;
+    progress(0.2 + 0.7 * found / m);
   }
   if (found < m)
   {
@@ -808,42 +1041,10 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
       std::to_string(upper / (s * s)) + ", where the inertia counts " + std::to_string(below) +
       " (" + std::to_string(m) + " needed)");
   }
-  progress(0.85);
 
-  // 4. Checks: D-orthonormality, relative residuals and componentwise backward errors, with
-  // the core's definitions (Verification.h), on distributed vectors.
+  // 4. Checks with the core's definitions (Verification.h), on distributed vectors: the
+  // relative residual needs the whole spectrum's scale, the orthonormality the whole Gram matrix.
   stage("Verify");
-  OwnedMat absQ;
-  MH_PETSC(MatDuplicate(Q.Object, MAT_COPY_VALUES, &absQ.Object));
-  {
-    PetscInt first = 0;
-    PetscInt end = 0;
-    MH_PETSC(MatGetOwnershipRange(Q.Object, &first, &end));
-    std::vector<PetscScalar> values;
-    for (PetscInt row = first; row < end; ++row)
-    {
-      PetscInt count = 0;
-      const PetscInt* cols = nullptr;
-      const PetscScalar* entries = nullptr;
-      MH_PETSC(MatGetRow(Q.Object, row, &count, &cols, &entries));
-      values.assign(entries, entries + count);
-      for (PetscScalar& value : values)
-      {
-        value = std::abs(value);
-      }
-      const PetscErrorCode set =
-        MatSetValues(absQ.Object, 1, &row, count, cols, values.data(), INSERT_VALUES);
-      MH_PETSC(MatRestoreRow(Q.Object, row, &count, &cols, &entries));
-      MH_PETSC(set);
-    }
-    MH_PETSC(MatAssemblyBegin(absQ.Object, MAT_FINAL_ASSEMBLY));
-    MH_PETSC(MatAssemblyEnd(absQ.Object, MAT_FINAL_ASSEMBLY));
-  }
-  OwnedVec rowSums;
-  OwnedVec ones;
-  MH_PETSC(MatCreateVecs(Q.Object, &rowSums.Object, &ones.Object));
-  MH_PETSC(VecSet(ones.Object, 1.0));
-  MH_PETSC(MatMult(D.Object, ones.Object, rowSums.Object));
   const double top = m > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
   double reference = top;
   for (int k = 0; k < m; ++k)
@@ -853,98 +1054,28 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
       reference = std::min(reference, std::abs(lambda[k]));
     }
   }
-  {
-    PetscScalar trace = 0.0;
-    PetscScalar mass = 0.0;
-    OwnedVec diagonalQ;
-    MH_PETSC(MatCreateVecs(Q.Object, &diagonalQ.Object, nullptr));
-    MH_PETSC(MatGetDiagonal(Q.Object, diagonalQ.Object));
-    MH_PETSC(VecSum(diagonalQ.Object, &trace));
-    MH_PETSC(VecSum(rowSums.Object, &mass));
-    reference = std::max(reference, 1e-6 * trace / std::max(mass, 1e-300));
-  }
+  reference = std::max(reference, 1e-6 * checks.TraceOverMass);
   const spectral::EigenOptions tolerances;
-  spectral::Vector rowSum(owned);
+  for (int k = 0; k < m; ++k)
   {
-    const PetscScalar* values = nullptr;
-    MH_PETSC(VecGetArrayRead(rowSums.Object, &values));
-    std::copy(values, values + owned, rowSum.data());
-    MH_PETSC(VecRestoreArrayRead(rowSums.Object, &values));
-  }
-  spectral::DenseMatrix gram = spectral::DenseMatrix::Zero(m, m);
-  OwnedVec Qx;
-  OwnedVec Dx;
-  OwnedVec absX;
-  OwnedVec scale;
-  OwnedVec absDx;
-  MH_PETSC(MatCreateVecs(Q.Object, &Qx.Object, &Dx.Object));
-  MH_PETSC(MatCreateVecs(Q.Object, &absX.Object, &scale.Object));
-  MH_PETSC(MatCreateVecs(Q.Object, &absDx.Object, nullptr));
-  const int block = 32;
-  spectral::DenseMatrix DX(owned, block);
-  for (int k0 = 0; k0 < m; k0 += block)
-  {
-    const int count = std::min(block, m - k0);
-    for (int j = 0; j < count; ++j)
+    const double relative = residualNorms[k] /
+      std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
+    result.MaxResidual = std::max(result.MaxResidual, relative);
+    const double backward = backwardErrors[k];
+    if (!(relative <= tolerances.ResidualTolerance) &&
+      !(backward <= tolerances.BackwardErrorTolerance))
     {
-      const int k = k0 + j;
-      Vec x = columns[k].Object;
-      MH_PETSC(MatMult(Q.Object, x, Qx.Object));
-      MH_PETSC(MatMult(D.Object, x, Dx.Object));
-      const PetscScalar* dx = nullptr;
-      MH_PETSC(VecGetArrayRead(Dx.Object, &dx));
-      std::copy(dx, dx + owned, DX.col(j).data());
-      MH_PETSC(VecRestoreArrayRead(Dx.Object, &dx));
-      // Qx <- Qx - lambda Dx: the residual.
-      MH_PETSC(VecAXPY(Qx.Object, -lambda[k], Dx.Object));
-      MH_PETSC(VecCopy(x, absX.Object));
-      MH_PETSC(VecAbs(absX.Object));
-      MH_PETSC(MatMult(absQ.Object, absX.Object, scale.Object));
-      MH_PETSC(MatMult(D.Object, absX.Object, absDx.Object));
-      MH_PETSC(VecAXPY(scale.Object, std::abs(lambda[k]), absDx.Object));
-      PetscReal largest = 0.0;
-      MH_PETSC(VecMax(scale.Object, nullptr, &largest));
-      const double floor = spectral::detail::BackwardErrorFloor * largest;
-      const PetscScalar* r = nullptr;
-      const PetscScalar* denominators = nullptr;
-      MH_PETSC(VecGetArrayRead(Qx.Object, &r));
-      MH_PETSC(VecGetArrayRead(scale.Object, &denominators));
-      double sums[2] = { 0.0, 0.0 }; // sum r^2 / d, and the largest backward ratio
-      for (PetscInt i = 0; i < owned; ++i)
-      {
-        sums[0] += r[i] * r[i] / rowSum[i];
-        const double error = std::abs(r[i]);
-        if (error > 0.0)
-        {
-          const double denominator = std::max(denominators[i], floor);
-          sums[1] = std::max(sums[1],
-            denominator > 0.0 ? error / denominator : std::numeric_limits<double>::infinity());
-        }
-      }
-      MH_PETSC(VecRestoreArrayRead(Qx.Object, &r));
-      MH_PETSC(VecRestoreArrayRead(scale.Object, &denominators));
-      double global[2];
-      MPI_Allreduce(&sums[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, comm);
-      MPI_Allreduce(&sums[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, comm);
-      const double relative = std::sqrt(global[0]) /
-        std::max({ std::abs(lambda[k]), reference, std::numeric_limits<double>::min() });
-      result.MaxResidual = std::max(result.MaxResidual, relative);
-      result.MaxBackwardError = std::max(result.MaxBackwardError, global[1]);
-      if (!(relative <= tolerances.ResidualTolerance) &&
-        !(global[1] <= tolerances.BackwardErrorTolerance))
-      {
-        std::ostringstream text;
-        text << "eigenpair " << k << " (lambda = " << lambda[k] / (s * s)
-             << ") has relative residual " << relative << " and backward error " << global[1]
-             << ", above the tolerances " << tolerances.ResidualTolerance << " and "
-             << tolerances.BackwardErrorTolerance << ": lower Tolerance";
-        throw std::runtime_error(text.str());
-      }
+      std::ostringstream text;
+      text << "eigenpair " << k << " (lambda = " << lambda[k] / (s * s)
+           << ") has relative residual " << relative << " and backward error " << backward
+           << ", above the tolerances " << tolerances.ResidualTolerance << " and "
+           << tolerances.BackwardErrorTolerance << ": lower Tolerance";
+      throw std::runtime_error(text.str());
     }
-    gram.middleCols(k0, count).noalias() = X.transpose() * DX.leftCols(count);
   }
   spectral::DenseMatrix globalGram(m, m);
   MPI_Allreduce(gram.data(), globalGram.data(), m * m, MPI_DOUBLE, MPI_SUM, comm);
+  globalGram = globalGram.selfadjointView<Eigen::Upper>();
   result.OrthonormalityError =
     m > 0 ? (globalGram - spectral::DenseMatrix::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
   if (!(result.OrthonormalityError <= tolerances.ResidualTolerance * 100))
@@ -952,58 +1083,20 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     throw std::runtime_error("the eigenvectors are D-orthonormal to " +
       std::to_string(result.OrthonormalityError) + " only: lower Tolerance");
   }
-  progress(0.9);
+  progress(0.95);
 
-  // 5. The rows of this piece's points, seam copies included (from their owners).
+  // 5. The mass and the DUPLICATEPOINT flags of this piece's points.
   stage("Write");
-  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
-  vtkManifoldHarmonicsParallel::PieceBasis& rows = result.Rows;
   rows.Eigenvalues = lambda / (s * s);
-  rows.Harmonics = vtkSmartPointer<vtkDoubleArray>::New();
-  rows.Harmonics->SetNumberOfComponents(std::max(m, 1));
-  rows.Harmonics->SetNumberOfTuples(n);
-  rows.Harmonics->FillValue(0.0);
   rows.Mass = vtkSmartPointer<vtkDoubleArray>::New();
   rows.Mass->SetNumberOfTuples(n);
   rows.Mass->FillValue(0.0);
   rows.Duplicates = vtkSmartPointer<vtkUnsignedCharArray>::New();
   rows.Duplicates->SetNumberOfTuples(n);
   rows.Duplicates->FillValue(0);
-  OwnedIS from;
-  MH_PETSC(ISCreateGeneral(PETSC_COMM_SELF,
-    static_cast<PetscInt>(used),
-    numbering.Global.data(),
-    PETSC_COPY_VALUES,
-    &from.Object));
-  OwnedVec local;
-  MH_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(used), &local.Object));
-  OwnedScatter scatter;
-  MH_PETSC(VecScatterCreate(lumped.Object, from.Object, local.Object, nullptr, &scatter.Object));
-  auto gather = [&](Vec global, const std::function<void(Eigen::Index, double)>& store)
-  {
-    MH_PETSC(VecScatterBegin(scatter.Object, global, local.Object, INSERT_VALUES, SCATTER_FORWARD));
-    MH_PETSC(VecScatterEnd(scatter.Object, global, local.Object, INSERT_VALUES, SCATTER_FORWARD));
-    const PetscScalar* values = nullptr;
-    MH_PETSC(VecGetArrayRead(local.Object, &values));
-    for (Eigen::Index i = 0; i < used; ++i)
-    {
-      store(i, values[i]);
-    }
-    MH_PETSC(VecRestoreArrayRead(local.Object, &values));
-  };
-  const double inverseScale = 1.0 / s;
-  double* harmonics = rows.Harmonics->GetPointer(0);
-  for (int k = 0; k < m; ++k)
-  {
-    gather(columns[k].Object,
-      [&](Eigen::Index i, double value) {
-        harmonics[static_cast<vtkIdType>(prepared.InputPointIds[i]) * m + k] = value * inverseScale;
-      });
-  }
   const double areaScale = s * s;
-  gather(lumped.Object,
-    [&](Eigen::Index i, double value)
-    { rows.Mass->SetValue(prepared.InputPointIds[i], value * areaScale); });
+  writer.Write(lumped.Object,
+    [&](vtkIdType tuple, double value) { rows.Mass->SetValue(tuple, value * areaScale); });
   for (Eigen::Index i = 0; i < used; ++i)
   {
     if (!numbering.Owned[i])
