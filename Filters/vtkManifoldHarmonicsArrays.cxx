@@ -589,17 +589,18 @@ int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* ou
 //------------------------------------------------------------------------------
 std::vector<double> EdgeSums(vtkPointSet* input)
 {
-  std::vector<double> sums = { 0.0, 0.0 };
-  if (input->GetNumberOfPoints() > 0)
+  return input->GetNumberOfPoints() > 0 ? EdgeSums(ToCoreMesh(input))
+                                        : std::vector<double>{ 0.0, 0.0 };
+}
+
+//------------------------------------------------------------------------------
+std::vector<double> EdgeSums(const CoreMesh& cells)
+{
+  if (cells.IsPointCloud())
   {
-    const CoreMesh cells = ToCoreMesh(input);
-    if (cells.IsPointCloud())
-    {
-      return spectral::CloudEdgeSums(cells.Mesh.Vertices);
-    }
-    sums[1] = spectral::EdgeCount(cells.Mesh);
-    sums[0] = spectral::MeanEdgeLength(cells.Mesh) * sums[1];
+    return spectral::CloudEdgeSums(cells.Mesh.Vertices);
   }
-  return sums;
+  const double count = spectral::EdgeCount(cells.Mesh);
+  return { spectral::MeanEdgeLength(cells.Mesh) * count, count };
 }
 } // namespace vtkManifoldHarmonicsArrays

@@ -190,6 +190,8 @@ int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* ou
  * the Nyquist frequency of the whole mesh, spectral::NyquistFrequency(sums[0], sums[1]).
  */
 std::vector<double> EdgeSums(vtkPointSet* input);
+/// EdgeSums of an input already converted by ToCoreMesh.
+std::vector<double> EdgeSums(const CoreMesh& cells);
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -47,25 +47,38 @@ struct Descriptor
 };
 
 /// The sums over the surface (volume) of this process: the area (volume) (the mass of the points it
-/// owns, see vtkManifoldHarmonicsGhosts) and the vtkManifoldHarmonicsArrays::EdgeSums, in that
-/// order; in a distributed run added over all processes (collective), so that they are the whole
-/// surface's. An input without the mass array adds no area (FindBasis reports it).
+/// owns, see vtkManifoldHarmonicsGhosts), the vtkManifoldHarmonicsArrays::EdgeSums, and 1 if its
+/// cells are a volume, in that order; in a distributed run added over all processes
+/// (collective), so that they are the whole mesh's. An input without the mass array adds no area
+/// (FindBasis reports it).
 std::vector<double> SurfaceSums(vtkMultiProcessController* controller, vtkPointSet* input)
 {
-  std::vector<double> sums = { 0.0, 0.0, 0.0 };
+  std::vector<double> sums = { 0.0, 0.0, 0.0, 0.0 };
   vtkDataArray* mass = input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass);
   if (mass && mass->GetNumberOfTuples() == input->GetNumberOfPoints())
   {
     sums[0] = vtkManifoldHarmonicsArrays::Signal(mass).View().col(0).dot(
       vtkManifoldHarmonicsGhosts::OwnedPoints(input));
   }
-  const std::vector<double> edges = vtkManifoldHarmonicsArrays::EdgeSums(input);
-  std::copy(edges.begin(), edges.end(), sums.begin() + 1);
+  if (input->GetNumberOfPoints() > 0)
+  {
+    const vtkManifoldHarmonicsArrays::CoreMesh cells =
+      vtkManifoldHarmonicsArrays::ToCoreMesh(input);
+    const std::vector<double> edges = vtkManifoldHarmonicsArrays::EdgeSums(cells);
+    std::copy(edges.begin(), edges.end(), sums.begin() + 1);
+    sums[3] = cells.Mesh.IsVolume() ? 1.0 : 0.0;
+  }
   if (controller)
   {
     vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
   }
   return sums;
+}
+
+/// The dimension of the mesh whose SurfaceSums are `sums`: 3 for a volume, else 2.
+int Dimension(const std::vector<double>& sums)
+{
+  return sums[3] > 0.0 ? 3 : 2;
 }
 
 /// The eigenvalues with the module's rule for zero ones (Spectral/Common/Eigenvalues.h), on the
@@ -205,12 +218,8 @@ bool SpectrumOnly(vtkPointSet* input)
 
 /// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda |Omega|^(2/d), with the
 /// measure (area or volume) and the dimension d of the input (2, or 3 for a volume).
-void FillShapeDNA(const spectral::Vector& lambda,
-  double measure,
-  vtkPointSet* input,
-  vtkTable* table)
+void FillShapeDNA(const spectral::Vector& lambda, double measure, int dimension, vtkTable* table)
 {
-  const int dimension = vtkManifoldHarmonicsArrays::ToCoreMesh(input).Mesh.IsVolume() ? 3 : 2;
   const spectral::Vector scaled = spectral::ShapeDNA(lambda, measure, dimension);
   vtkNew<vtkIdTypeArray> index;
   index->SetName(vtkManifoldHarmonicsNames::IndexColumn);
@@ -325,6 +334,7 @@ void vtkSpectralDescriptors::RemoveAllHeatKernelTimes()
 //------------------------------------------------------------------------------
 int vtkSpectralDescriptors::ShapeDNAOnly(vtkPointSet* input,
   double area,
+  int dimension,
   vtkPointSet* output,
   vtkTable* table)
 {
@@ -342,7 +352,7 @@ int vtkSpectralDescriptors::ShapeDNAOnly(vtkPointSet* input,
     input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues))
                                     .View()
                                     .col(0);
-  FillShapeDNA(lambda, area, input, table);
+  FillShapeDNA(lambda, area, dimension, table);
   output->ShallowCopy(input);
   return 1;
 }
@@ -441,7 +451,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   }
   if (SpectrumOnly(input))
   {
-    return this->ShapeDNAOnly(input, area, output, table);
+    return this->ShapeDNAOnly(input, area, Dimension(sums), output, table);
   }
   vtkManifoldHarmonicsArrays::Basis basis;
   std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
@@ -553,7 +563,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
         {} });
       this->UsedSourcePoint = source;
     }
-    FillShapeDNA(spectrum.Lambda, area, input, table);
+    FillShapeDNA(spectrum.Lambda, area, Dimension(sums), table);
   }
   catch (const std::exception& e)
   {

@@ -292,8 +292,12 @@ protected:
   vtkIdType UsedSourcePoint = -1;
 
   /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics), for a surface
-  /// of the given area (a volume of the given volume).
-  int ShapeDNAOnly(vtkPointSet* input, double area, vtkPointSet* output, vtkTable* table);
+  /// of the given area (dimension 2) or a volume of the given volume (dimension 3).
+  int ShapeDNAOnly(vtkPointSet* input,
+    double area,
+    int dimension,
+    vtkPointSet* output,
+    vtkTable* table);
 
 private:
   vtkSpectralDescriptors(const vtkSpectralDescriptors&) = delete;

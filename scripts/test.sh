@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Build and test Manifold Harmonics three times:
 #   1. against ParaView (module, Python wrapping, plugin) in ${BUILD_DIR:-build}, all tests;
-#   2. as a plain VTK module (find_package(VTK), no ParaView) in ${BUILD_DIR}/vtk-only, its tests;
+#   2. as a plain VTK module (find_package(VTK), no ParaView) in ${BUILD_DIR}/vtk-only, its tests
+#      (the VTK-free core's tests and the benchmark program are left out: stages 1 and 3 have them);
 #   3. the spectral core alone (Testing/Core, no VTK) with AddressSanitizer and
 #      UndefinedBehaviorSanitizer in ${BUILD_DIR}/sanitize, its tests, then the libFuzzer target
 #      FuzzCore for FUZZ_SECONDS (default 60) when clang is available.
@@ -49,6 +50,8 @@ cmake -S "${source_dir}" -B "${build_dir}/vtk-only" \
   -DCMAKE_BUILD_TYPE=Release \
   -DBUILD_TESTING=ON \
   -DMANIFOLDHARMONICS_USE_PARAVIEW=OFF \
+  -DMANIFOLDHARMONICS_CORE_TESTS=OFF \
+  -DMANIFOLDHARMONICS_BUILD_BENCH=OFF \
   -DVTK_DIR="${cmake_dir}/vtk"
 cmake --build "${build_dir}/vtk-only" -j "${jobs}"
 (cd "${build_dir}/vtk-only" && run_ctest --output-on-failure) || status=1

@@ -225,11 +225,8 @@ void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
 }
 
 //------------------------------------------------------------------------------
-// The numbers of eigenvalues below the two ends of the frequency window (in the units of the
-// operators: frequencies times s), from the inertia of L - omega^2 M.
-std::pair<int, int> WindowCounts(const DiscreteLaplacian& ops,
-  const BasisOptions& options,
-  double s)
+// The frequency window in the units of the operators (frequencies times s), checked.
+std::pair<double, double> Window(const BasisOptions& options, double s)
 {
   const double low = options.LowerFrequency * s;
   const double high = options.UpperFrequency * s;
@@ -238,16 +235,7 @@ std::pair<int, int> WindowCounts(const DiscreteLaplacian& ops,
     throw InvalidInput("the frequency window [" + std::to_string(options.LowerFrequency) + ", " +
       std::to_string(options.UpperFrequency) + ") must have 0 <= lower < upper < infinity");
   }
-  // Below omega = 0 there is no eigenvalue (L is positive semi-definite, and singular at 0).
-  const int below = low > 0.0 ? CountEigenvaluesBelow(ops.Stiffness, ops.Mass, low * low) : 0;
-  const int upTo = CountEigenvaluesBelow(ops.Stiffness, ops.Mass, high * high);
-  if (upTo <= below)
-  {
-    throw InvalidInput("no eigenvalue lies in the frequency window [" +
-      std::to_string(options.LowerFrequency) + ", " + std::to_string(options.UpperFrequency) +
-      "): " + std::to_string(below) + " lie below it");
-  }
-  return { below, upTo };
+  return { low, high };
 }
 
 //------------------------------------------------------------------------------
@@ -365,19 +353,10 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
     m = ClampedHarmonics(
       m, static_cast<int>(ops.Stiffness.rows()), "inside the boundary", monitor, result);
   }
-  std::pair<int, int> pairs(0, m);
-  if (window)
-  {
-    pairs = WindowCounts(ops, options, s);
-    m = pairs.second - pairs.first;
-    if (options.CheckMemory)
-    {
-      CheckMemory(mesh, used, m, options);
-    }
-  }
+  const std::pair<double, double> range = window ? Window(options, s) : std::make_pair(0.0, 0.0);
   result.Components = ops.Components.Count;
   result.ConstantHarmonics = ops.ConstantHarmonics;
-  if (ops.ConstantHarmonics)
+  if (ops.ConstantHarmonics && !window)
   {
     ReportComponents(result.Components, m, monitor, result);
   }
@@ -398,16 +377,33 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   { return SolveWithFallbacks(L, M, request, part, state); };
   if (window)
   {
-    // Each component from the lower end of the window up: the bands start there.
-    const double low = options.LowerFrequency * s;
-    const double high = options.UpperFrequency * s;
+    // Each component from the lower end of the window up: the bands start there. Its pairs are
+    // counted first (the inertia of L - omega^2 M at both ends, per component).
+    const auto counted = [&](int below, int inWindow)
+    {
+      if (inWindow <= 0)
+      {
+        throw InvalidInput("no eigenvalue lies in the frequency window [" +
+          std::to_string(options.LowerFrequency) + ", " + std::to_string(options.UpperFrequency) +
+          "): " + std::to_string(below) + " lie below it");
+      }
+      if (options.CheckMemory)
+      {
+        CheckMemory(mesh, used, inWindow, options);
+      }
+      if (ops.ConstantHarmonics)
+      {
+        ReportComponents(result.Components, inWindow, monitor, result);
+      }
+    };
     result.Pairs = EigenpairsInWindowByComponent(ops.Stiffness,
       ops.Mass,
       ops.Components.Label,
       ops.Components.Count,
-      low * low,
-      high * high,
+      range.first * range.first,
+      range.second * range.second,
       solve,
+      counted,
       result.FirstIndex,
       monitor.Scaled(0.1, 1.0));
   }
@@ -430,11 +426,6 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   result.Pairs.Eigenvectors /= std::pow(s, 0.5 * d);
   result.LumpedMass = ops.LumpedMass * std::pow(s, d);
   result.InputPointIds = std::move(ops.InputPointIds);
-  if (window && result.FirstIndex != pairs.first)
-  {
-    throw SolverFailure("the components count " + std::to_string(result.FirstIndex) +
-      " eigenvalues below the frequency window, the whole mesh " + std::to_string(pairs.first));
-  }
   LeaveOutUnrepresented(result, monitor);
   if (options.EigenvaluesOnly)
   {

@@ -245,28 +245,54 @@ EigenResult EigenpairsInWindowByComponent(const SparseMatrix& L,
   double low,
   double high,
   const PairSolver& solve,
+  const WindowCounted& counted,
   int& below,
   const Monitor& monitor)
 {
+  std::vector<Block> blocks;
+  if (count > 1)
+  {
+    blocks = SplitBlocks(L, M, label, count);
+  }
+  const std::size_t parts = std::max<std::size_t>(blocks.size(), 1);
+  const auto stiffness = [&](std::size_t c) -> const SparseMatrix&
+  { return count > 1 ? blocks[c].L : L; };
+  const auto mass = [&](std::size_t c) -> const SparseMatrix&
+  { return count > 1 ? blocks[c].M : M; };
+
+  // Each component's eigenvalues below both ends (Sylvester's law; below omega = 0 there is
+  // none, L being positive semi-definite), then their sums for the caller.
+  std::vector<std::pair<int, int>> ends(parts);
   below = 0;
-  // The pairs of one component in the window; none if it has no eigenvalue there.
-  const auto inWindow = [&](const SparseMatrix& Lc, const SparseMatrix& Mc, const Monitor& part)
+  int inWindow = 0;
+  for (std::size_t c = 0; c < parts; ++c)
   {
     monitor.ThrowIfCancelled();
-    // Below omega = 0 there is no eigenvalue (L is positive semi-definite).
-    const int first = low > 0.0 ? CountEigenvaluesBelow(Lc, Mc, low) : 0;
-    const int end = CountEigenvaluesBelow(Lc, Mc, high);
-    below += first;
-    return end > first ? solve(Lc, Mc, PairRequest{ end - first, first, low }, part)
+    ends[c].first = low > 0.0 ? CountEigenvaluesBelow(stiffness(c), mass(c), low) : 0;
+    ends[c].second = CountEigenvaluesBelow(stiffness(c), mass(c), high);
+    below += ends[c].first;
+    inWindow += std::max(0, ends[c].second - ends[c].first);
+  }
+  if (counted)
+  {
+    counted(below, inWindow);
+  }
+
+  // The pairs of each component in the window, starting there; none if it has no eigenvalue
+  // there.
+  const auto inWindowOf = [&](std::size_t c, const Monitor& part)
+  {
+    monitor.ThrowIfCancelled();
+    const auto [first, end] = ends[c];
+    return end > first ? solve(stiffness(c), mass(c), PairRequest{ end - first, first, low }, part)
                        : EigenResult();
   };
   if (count <= 1)
   {
-    EigenResult result = inWindow(L, M, monitor);
+    EigenResult result = inWindowOf(0, monitor);
     monitor.Report(1.0);
     return result;
   }
-  std::vector<Block> blocks = SplitBlocks(L, M, label, count);
   EigenResult result;
   const double n = static_cast<double>(L.rows());
   double done = 0.0;
@@ -275,7 +301,7 @@ EigenResult EigenpairsInWindowByComponent(const SparseMatrix& L,
   {
     Block& block = blocks[c];
     const double share = static_cast<double>(block.Rows.size()) / n;
-    block.Pairs = inWindow(block.L, block.M, monitor.Scaled(done, done + share));
+    block.Pairs = inWindowOf(c, monitor.Scaled(done, done + share));
     AddStatistics(result, block.Pairs);
     for (Eigen::Index k = 0; k < block.Pairs.Eigenvalues.size(); ++k)
     {

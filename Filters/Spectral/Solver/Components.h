@@ -75,12 +75,18 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const Monitor& monitor = Monitor(),
   bool constantHarmonics = true);
 
+/// Told the eigenvalues below a frequency window and in it, once they are counted.
+using WindowCounted = std::function<void(int below, int inWindow)>;
+
 /**
  * The eigenpairs with eigenvalues in [low, high) of block-diagonal operators, component by
  * component: the inertia of each component's L - low M and L - high M (Sylvester's law) counts
  * its eigenvalues below both ends, so each component is asked for exactly its pairs in the
  * window, starting there (PairRequest::StartIndex), and the union is proven.
  * \param low, high The window, 0 <= low < high; no eigenvalue may equal either end.
+ * \param counted Called once the counts are known, before any solve, with the number of
+ *        eigenvalues below low and in the window over all components (for memory checks and
+ *        errors: it may throw); may be empty.
  * \param below Set to the number of eigenvalues below low, over all components.
  * \return The pairs ascending, eigenvectors (if the solver returns them) zero outside their
  *         component; statistics as SmallestEigenpairsByComponent.
@@ -93,6 +99,7 @@ EigenResult EigenpairsInWindowByComponent(const SparseMatrix& L,
   double low,
   double high,
   const PairSolver& solve,
+  const WindowCounted& counted,
   int& below,
   const Monitor& monitor = Monitor());
 } // namespace spectral
