@@ -37,6 +37,9 @@ namespace
 // Eigenvalues per spectrum slicing run: the solve checks the abort flag and reports progress
 // between runs. Each run adds the factorizations at its ends.
 constexpr int SliceHarmonics = 200;
+// Eigenvectors whose D-products a process keeps at once (owned rows by GramColumns) to take
+// their Gram matrix against the written rows: memory against passes over those rows.
+constexpr int GramColumns = 32;
 
 //------------------------------------------------------------------------------
 // PETSc errors: the first message of an error (where it arose), recorded by our handler, and
@@ -780,7 +783,7 @@ spectral::DenseMatrix WrittenTimes(const double* rows,
   int m,
   int columns,
   const std::vector<vtkIdType>& ownedTuples,
-  const spectral::DenseMatrix& Y)
+  const Eigen::Ref<const spectral::DenseMatrix>& Y)
 {
   spectral::DenseMatrix product = spectral::DenseMatrix::Zero(columns, Y.cols());
   if (columns == 0)
@@ -995,6 +998,9 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   std::vector<double> backwardErrors(static_cast<std::size_t>(m), 0.0);
   spectral::DenseMatrix gram = spectral::DenseMatrix::Zero(m, m);
   const double inverseScale = 1.0 / s;
+  OwnedVec vector;
+  MH_PETSC(MatCreateVecs(Q.Object, &vector.Object, nullptr));
+  spectral::DenseMatrix DX(owned, GramColumns);
   int found = 0;
   for (int j = 0; j < slices && found < m; ++j)
   {
@@ -1009,29 +1015,30 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     result.InertiaCount += static_cast<int>(slice.Count);
     result.Computed += static_cast<int>(slice.Order.size());
     result.Shifts += static_cast<int>(slice.Shifts);
-    // The smallest pairs of the slice, D-normalized and checked, in storage of our own.
+    // The smallest pairs of the slice, D-normalized, checked and written, in groups of
+    // GramColumns: the Gram matrix X^T D X of a group's columns is then taken against the
+    // written rows of all columns so far (in the mesh's units, hence s).
     const int count = std::min(static_cast<int>(slice.Order.size()), m - found);
-    spectral::DenseMatrix Y(owned, count);
-    spectral::DenseMatrix DY(owned, count);
-    for (int c = 0; c < count; ++c)
+    for (int c0 = 0; c0 < count; c0 += GramColumns)
     {
-      const int k = found + c;
-      lambda[k] = slice.Order[c].first;
-      OwnedVec column;
-      MH_PETSC(
-        VecCreateMPIWithArray(comm, 1, owned, numbering.Total, Y.col(c).data(), &column.Object));
-      MH_PETSC(EPSGetEigenvector(eps.Object, slice.Order[c].second, column.Object, nullptr));
-      const PairError error = checks.NormalizeAndCheck(column.Object, lambda[k], DY.col(c).data());
-      residualNorms[k] = error.ResidualNorm;
-      backwardErrors[k] = error.Backward;
-      result.MaxBackwardError = std::max(result.MaxBackwardError, error.Backward);
-      writer.Write(column.Object,
-        [&](vtkIdType tuple, double value) { harmonics[tuple * m + k] = value * inverseScale; });
+      const int columns = std::min(GramColumns, count - c0);
+      for (int c = c0; c < c0 + columns; ++c)
+      {
+        const int k = found + c;
+        lambda[k] = slice.Order[c].first;
+        MH_PETSC(EPSGetEigenvector(eps.Object, slice.Order[c].second, vector.Object, nullptr));
+        const PairError error =
+          checks.NormalizeAndCheck(vector.Object, lambda[k], DX.col(c - c0).data());
+        residualNorms[k] = error.ResidualNorm;
+        backwardErrors[k] = error.Backward;
+        result.MaxBackwardError = std::max(result.MaxBackwardError, error.Backward);
+        writer.Write(vector.Object,
+          [&](vtkIdType tuple, double value) { harmonics[tuple * m + k] = value * inverseScale; });
+      }
+      const int written = found + c0 + columns;
+      gram.block(0, found + c0, written, columns) =
+        s * WrittenTimes(harmonics, m, written, ownedTuples, DX.leftCols(columns));
     }
-    // Gram matrix X^T D X, the columns of this slice: against the written rows of the earlier
-    // slices (in the mesh's units, hence s), and within the slice.
-    gram.block(0, found, found, count) = s * WrittenTimes(harmonics, m, found, ownedTuples, DY);
-    gram.block(found, found, count, count).noalias() = Y.transpose() * DY;
     found += count;
     progress(0.2 + 0.7 * found / m);
   }
