@@ -191,8 +191,8 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPoly
 // DUPLICATEPOINT on the points another process owns, the input's other flags kept. The cell
 // ghost array is the input's. The harmonics are converted to floats when
 // `floats` is true.
-void AddPieceArrays(vtkPolyData* output,
-  vtkPolyData* input,
+void AddPieceArrays(vtkPointSet* output,
+  vtkPointSet* input,
   const vtkManifoldHarmonicsParallel::PieceBasis& rows,
   bool floats)
 {
@@ -382,19 +382,8 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
   vtkPointSet* output = vtkPointSet::GetData(outputVector);
   if (this->Solver == SLEPC)
   {
-    // Every process takes part, with or without triangles. Surfaces in vtkPolyData only, so far
-    // (the same input type on every process, so every process refuses alike).
-    vtkPolyData* surfaceInput = vtkPolyData::SafeDownCast(input);
-    vtkPolyData* surfaceOutput = vtkPolyData::SafeDownCast(output);
-    if (!surfaceInput || !surfaceOutput)
-    {
-      vtkErrorMacro(<< "The SLEPc solver takes surfaces in a vtkPolyData only so far, not a "
-                    << input->GetClassName()
-                    << ": choose the Built-in solver, or extract the surface first.");
-      output->Initialize();
-      return 0;
-    }
-    return this->ComputeSlepcBasis(surfaceInput, surfaceOutput);
+    // Every process takes part, with or without cells.
+    return this->ComputeSlepcBasis(input, output);
   }
   vtkPolyData* surface = vtkPolyData::SafeDownCast(input);
   const bool hasSurface = surface && surface->GetNumberOfPolys() + surface->GetNumberOfStrips() > 0;
@@ -409,10 +398,12 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
     {
       if (others > 0)
       {
-        vtkErrorMacro(<< "Distributed runs take vtkPolyData surfaces only for now: this mesh ("
+        vtkErrorMacro(<< "The Built-in solver takes distributed vtkPolyData surfaces only: this "
+                         "mesh ("
                       << input->GetClassName()
-                      << ") is held by several processes. Compute its harmonics in a serial "
-                         "run, or gather it on one process first (Merge Blocks, Reduction).");
+                      << ") is held by several processes. Choose Solver SLEPc (volumes), "
+                         "compute its harmonics in a serial run, or gather it on one process "
+                         "first (Merge Blocks, Reduction).");
         output->Initialize();
         return 0;
       }
@@ -488,7 +479,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPolyData* input, vtkPolyData* output)
+int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet* output)
 {
   output->Initialize();
   // The settings the SLEPc solver does not have, refused alike on every process before any
@@ -533,16 +524,52 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPolyData* input, vtkPolyData*
   settings.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
   settings.Warning = [this](const std::string& text) { vtkWarningMacro(<< text); };
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
+  // The cells of this piece in the core's form: polygons of a vtkPolyData through
+  // vtkTriangleFilter, other cells through ToCoreMesh (ghost cells left out by both).
+  vtkSmartPointer<vtkPointSet> triangulated = input;
+  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
+  if (polygons && polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
+  {
+    triangulated = ::Triangulate(this, polygons);
+  }
+  const vtkManifoldHarmonicsArrays::CoreMesh cells =
+    vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
+  for (const std::string& warning : cells.Warnings())
+  {
+    vtkWarningMacro(<< warning);
+  }
+  // Pieces that cannot be used, and point clouds (points on some process, cells on none), are
+  // refused on every process alike (the counts are collective).
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  const auto count = [controller, distributed](bool flag) {
+    return distributed ? vtkManifoldHarmonicsParallel::CountRanks(controller, flag) : flag ? 1 : 0;
+  };
+  const std::string problem = cells.Problem();
+  const int unusable = count(!problem.empty());
+  const int withCells = count(cells.HasCells());
+  const int withPoints = count(input->GetNumberOfPoints() > 0);
+  if (unusable > 0)
+  {
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "The SLEPc solver cannot use this piece: " << problem);
+    }
+    else
+    {
+      vtkErrorMacro(<< "The SLEPc solver stopped: another process's piece cannot be used.");
+    }
+    return 0;
+  }
+  if (withCells == 0 && withPoints > 0)
+  {
+    vtkErrorMacro(<< "The SLEPc solver does not take point clouds (points without triangles or "
+                     "tetrahedra) yet: choose the Built-in solver in a serial run.");
+    return 0;
+  }
   try
   {
-    vtkSmartPointer<vtkPolyData> piece = input;
-    if (hasSurface)
-    {
-      piece = ::Triangulate(this, input);
-    }
     const vtkManifoldHarmonicsSlepc::Result result =
-      vtkManifoldHarmonicsSlepc::Solve(controller, piece, settings);
+      vtkManifoldHarmonicsSlepc::Solve(controller, cells.Mesh, settings);
     ::AddPieceArrays(output, input, result.Rows, this->BasisPrecision == FLOAT);
     for (const auto& figure :
       { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),

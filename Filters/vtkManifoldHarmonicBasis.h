@@ -398,9 +398,11 @@ public:
   ///@{
   /**
    * Choose the eigensolver: BUILT_IN (0) or SLEPC (1). SLEPC needs a build with SLEPc
-   * (HasSlepc(); an error otherwise) and supports the COTANGENT Laplacian, both mass matrices,
-   * NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's); MinimumComponentSize,
-   * EigenvaluesOnly and FrequencyWindow are refused with an error, and BandSize, MemoryLimit
+   * (HasSlepc(); an error otherwise) and takes surfaces and volumes (triangles or tetrahedra,
+   * any vtkPointSet; point clouds are refused). It supports the COTANGENT Laplacian, both mass
+   * matrices, NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's);
+   * MinimumComponentSize, EigenvaluesOnly, FrequencyWindow and the DIRICHLET
+   * BoundaryCondition are refused with an error, and BandSize, MemoryLimit
    * and NumberOfThreads (the built-in solver's) do not apply. Its results equal the
    * built-in solver's to round-off: the eigenvalues, the spanned subspaces, the filtered points
    * (Testing/ParaView/TestSlepcManifoldHarmonics.py.in, at 1, 2 and 3 processes). The output
@@ -471,7 +473,7 @@ protected:
    * The SLEPC solver: every process solves with the others on its own piece (collective; a
    * serial run is one process). Errors and cancels alike on every process.
    */
-  int ComputeSlepcBasis(vtkPolyData* input, vtkPolyData* output);
+  int ComputeSlepcBasis(vtkPointSet* input, vtkPointSet* output);
 
   /**
    * Distributed run (MPI, several processes hold triangles): gather and merge the pieces on

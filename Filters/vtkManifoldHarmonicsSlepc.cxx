@@ -2,16 +2,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkManifoldHarmonicsSlepc.h"
 
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkCellData.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointLocator.h"
 #include "vtkPoints.h"
-#include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "Spectral/Basis.h"
@@ -23,6 +19,7 @@
 #include <slepceps.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -212,75 +209,55 @@ void Initialize()
 }
 
 //------------------------------------------------------------------------------
-// The triangles of a piece that are not ghost cells, in the core's form.
-spectral::TriangleMesh LocalTriangles(vtkPolyData* piece)
-{
-  spectral::TriangleMesh mesh;
-  if (!piece || piece->GetNumberOfPoints() == 0)
-  {
-    return mesh;
-  }
-  const vtkIdType n = piece->GetNumberOfPoints();
-  mesh.Vertices.resize(n, 3);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    double x[3];
-    piece->GetPoint(i, x);
-    mesh.Vertices.row(i) << x[0], x[1], x[2];
-  }
-  vtkDataArray* ghosts = piece->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
-  const unsigned char skip = vtkDataSetAttributes::DUPLICATECELL | vtkDataSetAttributes::HIDDENCELL;
-  // Cell ids of a vtkPolyData: vertices, lines, then polygons.
-  const vtkIdType first = piece->GetNumberOfVerts() + piece->GetNumberOfLines();
-  std::vector<std::array<int, 3>> faces;
-  faces.reserve(piece->GetNumberOfPolys());
-  auto cells = vtk::TakeSmartPointer(piece->GetPolys()->NewIterator());
-  vtkIdType cell = first;
-  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell(), ++cell)
-  {
-    vtkIdType npts;
-    const vtkIdType* pts;
-    cells->GetCurrentCell(npts, pts);
-    if (npts != 3 ||
-      (ghosts && (static_cast<unsigned char>(ghosts->GetComponent(cell, 0)) & skip) != 0))
-    {
-      continue;
-    }
-    faces.push_back(
-      { static_cast<int>(pts[0]), static_cast<int>(pts[1]), static_cast<int>(pts[2]) });
-  }
-  mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-  {
-    mesh.Faces.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
-  }
-  return mesh;
-}
-
-//------------------------------------------------------------------------------
-// Points that another piece may hold: those on an edge that not exactly two triangles of this
-// piece share (a seam between pieces, a boundary of the surface, a non-manifold edge).
+// Points that another piece may hold: those on a facet (an edge of a triangle, a face of a
+// tetrahedron) that not exactly two cells of this piece share (a seam between pieces, a
+// boundary of the mesh, a non-manifold facet).
 std::vector<int> BorderPoints(const spectral::TriangleMesh& mesh)
 {
-  std::unordered_map<std::uint64_t, int> edges;
-  edges.reserve(static_cast<std::size_t>(mesh.Faces.rows()) * 3);
-  for (Eigen::Index f = 0; f < mesh.Faces.rows(); ++f)
+  const bool volume = mesh.IsVolume();
+  const Eigen::Index cells = volume ? mesh.Tets.rows() : mesh.Faces.rows();
+  const int corners = volume ? 4 : 3;
+  // Each facet as its sorted point ids (the third -1 for an edge), one entry per cell using it.
+  std::vector<std::array<int, 3>> facets;
+  facets.reserve(static_cast<std::size_t>(cells * corners));
+  for (Eigen::Index c = 0; c < cells; ++c)
   {
-    for (int e = 0; e < 3; ++e)
+    for (int left = 0; left < corners; ++left)
     {
-      const std::uint32_t a = static_cast<std::uint32_t>(mesh.Faces(f, e));
-      const std::uint32_t b = static_cast<std::uint32_t>(mesh.Faces(f, (e + 1) % 3));
-      ++edges[(static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b)];
+      // A facet of a tetrahedron leaves one corner out; an edge of a triangle, the opposite one.
+      std::array<int, 3> facet = { -1, -1, -1 };
+      int k = 0;
+      for (int j = 0; j < corners; ++j)
+      {
+        if (j != left)
+        {
+          facet[k++] = volume ? mesh.Tets(c, j) : mesh.Faces(c, j);
+        }
+      }
+      std::sort(facet.begin(), facet.begin() + k);
+      facets.push_back(facet);
     }
   }
+  std::sort(facets.begin(), facets.end());
   std::vector<char> border(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
-  for (const auto& edge : edges)
+  for (std::size_t i = 0; i < facets.size();)
   {
-    if (edge.second != 2)
+    std::size_t j = i;
+    while (j < facets.size() && facets[j] == facets[i])
     {
-      border[edge.first >> 32] = 1;
-      border[edge.first & 0xffffffffu] = 1;
+      ++j;
     }
+    if (j - i != 2)
+    {
+      for (const int point : facets[i])
+      {
+        if (point >= 0)
+        {
+          border[point] = 1;
+        }
+      }
+    }
+    i = j;
   }
   std::vector<int> points;
   for (std::size_t i = 0; i < border.size(); ++i)
@@ -809,7 +786,9 @@ spectral::DenseMatrix WrittenTimes(const double* rows,
 namespace vtkManifoldHarmonicsSlepc
 {
 //------------------------------------------------------------------------------
-Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Settings& settings)
+Result Solve(vtkMultiProcessController* controller,
+  const spectral::TriangleMesh& piece,
+  const Settings& settings)
 {
   Initialize();
   const MPI_Comm comm = PETSC_COMM_WORLD;
@@ -847,11 +826,20 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     }
   };
 
-  // 1. This piece's triangles of non-zero area and the points they use; global numbers.
+  // 1. This piece's cells of non-zero size and the points they use; global numbers.
   stage("Assemble");
-  const spectral::PreparedMesh prepared = spectral::PrepareMesh(LocalTriangles(piece));
+  const spectral::PreparedMesh prepared = spectral::PrepareMesh(piece);
   spectral::TriangleMesh mesh = prepared.Mesh;
   const Eigen::Index used = mesh.Vertices.rows();
+  // Triangles on some processes and tetrahedra on others: refused on all alike.
+  int kinds[2] = { mesh.Faces.rows() > 0 ? 1 : 0, mesh.IsVolume() ? 1 : 0 };
+  MPI_Allreduce(MPI_IN_PLACE, kinds, 2, MPI_INT, MPI_MAX, comm);
+  if (kinds[0] && kinds[1])
+  {
+    throw std::runtime_error("some processes hold triangles and others tetrahedra: the mesh "
+                             "must be a surface or a volume on every process");
+  }
+  const int dimension = kinds[1] ? 3 : 2;
   double low[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
   double high[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (int c = 0; c < 3 && used > 0; ++c)
@@ -868,7 +856,8 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   MPI_Allreduce(&usedLocal, &usedTotal, 1, MPI_LONG_LONG, MPI_SUM, comm);
   if (usedTotal == 0)
   {
-    throw std::runtime_error("no triangle of non-zero area on any process");
+    throw std::runtime_error(
+      "no triangle of non-zero area and no tetrahedron of non-zero volume on any process");
   }
   double diagonal = 0.0;
   double bounds[6];
@@ -892,13 +881,13 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     m = static_cast<int>(numbering.Total);
   }
 
-  // 2. Operators of the local triangles in the unit of the global diameter, added up by global
+  // 2. Operators of the local cells in the unit of the global diameter, added up by global
   // numbers.
   const double s = spectral::UnitScale(diagonal);
   mesh.Vertices /= s;
-  double areaLocal = spectral::SurfaceArea(mesh);
-  double area = 0.0;
-  MPI_Allreduce(&areaLocal, &area, 1, MPI_DOUBLE, MPI_SUM, comm);
+  double measureLocal = spectral::Measure(mesh);
+  double measure = 0.0;
+  MPI_Allreduce(&measureLocal, &measure, 1, MPI_DOUBLE, MPI_SUM, comm);
   OwnedMat Q;
   CreateMatrix(comm, spectral::CotanStiffness(mesh), numbering, Q);
   const spectral::Vector lumpedLocal = spectral::LumpedMass(mesh);
@@ -938,9 +927,12 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
 
   // 3. The interval: Weyl's law for its upper end, widened until the inertia counts m.
   stage("Interval");
-  const double gap = 4.0 * M_PI / std::max(area, std::numeric_limits<double>::min());
-  const double lower = -0.5 * gap;
-  double upper = 1.2 * gap * (m + 1);
+  const double first =
+    spectral::WeylEigenvalue(1.0, std::max(measure, std::numeric_limits<double>::min()), dimension);
+  const double lower = -0.5 * first;
+  double upper = 1.2 *
+    spectral::WeylEigenvalue(
+      m + 1.0, std::max(measure, std::numeric_limits<double>::min()), dimension);
   PetscInt below = CountBelow(Q.Object, D.Object, upper);
   for (int attempt = 0; below < m; ++attempt)
   {
@@ -971,7 +963,7 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   // The rows of this piece's points are the only full copy of the harmonics a process keeps:
   // each slice's pairs are checked, then written there (seam copies from their owners), and
   // the D-orthonormality of later slices is measured against the written rows.
-  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  const vtkIdType n = piece.Vertices.rows();
   vtkManifoldHarmonicsParallel::PieceBasis& rows = result.Rows;
   rows.Harmonics = vtkSmartPointer<vtkDoubleArray>::New();
   rows.Harmonics->SetNumberOfComponents(std::max(m, 1));
@@ -997,7 +989,8 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   std::vector<double> residualNorms(static_cast<std::size_t>(m), 0.0);
   std::vector<double> backwardErrors(static_cast<std::size_t>(m), 0.0);
   spectral::DenseMatrix gram = spectral::DenseMatrix::Zero(m, m);
-  const double inverseScale = 1.0 / s;
+  // M-normalized harmonics scale as s^(-d/2), the mass as s^d.
+  const double inverseScale = std::pow(s, -0.5 * dimension);
   OwnedVec vector;
   MH_PETSC(MatCreateVecs(Q.Object, &vector.Object, nullptr));
   spectral::DenseMatrix DX(owned, GramColumns);
@@ -1017,7 +1010,7 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
     result.Shifts += static_cast<int>(slice.Shifts);
     // The smallest pairs of the slice, D-normalized, checked and written, in groups of
     // GramColumns: the Gram matrix X^T D X of a group's columns is then taken against the
-    // written rows of all columns so far (in the mesh's units, hence s).
+    // written rows of all columns so far (scaled back from the mesh's units).
     const int count = std::min(static_cast<int>(slice.Order.size()), m - found);
     for (int c0 = 0; c0 < count; c0 += GramColumns)
     {
@@ -1037,7 +1030,7 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
       }
       const int written = found + c0 + columns;
       gram.block(0, found + c0, written, columns) =
-        s * WrittenTimes(harmonics, m, written, ownedTuples, DX.leftCols(columns));
+        WrittenTimes(harmonics, m, written, ownedTuples, DX.leftCols(columns)) / inverseScale;
     }
     found += count;
     progress(0.2 + 0.7 * found / m);
@@ -1101,7 +1094,7 @@ Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Se
   rows.Duplicates = vtkSmartPointer<vtkUnsignedCharArray>::New();
   rows.Duplicates->SetNumberOfTuples(n);
   rows.Duplicates->FillValue(0);
-  const double areaScale = s * s;
+  const double areaScale = std::pow(s, dimension);
   writer.Write(lumped.Object,
     [&](vtkIdType tuple, double value) { rows.Mass->SetValue(tuple, value * areaScale); });
   for (Eigen::Index i = 0; i < used; ++i)

@@ -5,25 +5,27 @@
  * @brief Private helper of vtkManifoldHarmonicBasis: the distributed eigensolve on SLEPc/PETSc
  *        (Solver SLEPC), built only when CMake finds SLEPc (MANIFOLDHARMONICS_HAS_SLEPC).
  *
- * Every process of the run passes its own piece of the surface; nothing is gathered on one
- * process. The steps (all collective over PETSC_COMM_WORLD, which is MPI_COMM_WORLD, the
- * communicator of ParaView's global controller):
+ * Every process of the run passes its own piece of the mesh, a surface (triangles) or a volume
+ * (tetrahedra); nothing is gathered on one process. The steps (all collective over
+ * PETSC_COMM_WORLD, which is MPI_COMM_WORLD, the communicator of ParaView's global controller):
  *
- * 1. Global point numbers. Each process keeps its triangles of non-zero area
- *    (spectral::PrepareMesh, ghost cells left out) and the points they use. The points on the
- *    border of its piece (on an edge that fewer or more than two of its triangles share) are
- *    the only ones another piece can hold: every process receives these seam points of all
- *    processes (O(sqrt n) per piece on a surface, not the mesh) and merges them as the gather path
+ * 1. Global point numbers. Each process keeps its cells of non-zero size
+ *    (spectral::PrepareMesh; the caller leaves ghost cells out) and the points they use. The
+ *    points on the border of its piece (on a facet, an edge of a triangle or a face of a
+ *    tetrahedron, that fewer or more than two of its cells share) are the only ones another
+ *    piece can hold: every process receives these seam points of all processes (O(sqrt n) per
+ *    piece on a surface, O(n^(2/3)) in a volume, not the mesh) and merges them as the gather path
  *    does (within SeamTolerance of the bounding box diagonal, in rank order, so every process
  *    finds the same merge). A point is owned by the lowest rank that holds it; each process
  *    numbers its owned points contiguously after those of the lower ranks.
- * 2. Assembly. Each process computes the cotan stiffness and the mass (lumped or consistent) of
- *    its own triangles with the core's formulas (Operators.h), in units of spectral::UnitScale
+ * 2. Assembly. Each process computes the stiffness (cotan, or P1 for tetrahedra) and the mass
+ *    (lumped or consistent) of its own cells with the core's formulas (Operators.h), in units
+ *    of spectral::UnitScale
  *    of the global diameter, and adds them into distributed PETSc AIJ matrices by global number
  *    (MatSetValues ADD_VALUES; PETSc sends the rows of other processes at assembly).
- * 3. Eigensolve. The interval [a, b] with a = -2 pi / area (half the mean eigenvalue gap by
- *    Weyl's law, below the zero eigenvalue of the singular stiffness) and b from Weyl's law
- *    lambda_m ~ 4 pi m / area, widened until the inertia of a MUMPS LDL^T factorization of
+ * 3. Eigensolve. The interval [a, b] with a = -lambda_1 / 2 and b = 1.2 lambda_(m+1) by Weyl's
+ *    law (spectral::WeylEigenvalue of the area or volume; a is below the zero eigenvalue of the
+ *    singular stiffness), b widened until the inertia of a MUMPS LDL^T factorization of
  *    Q - b D counts at least m eigenvalues below b. SLEPc's Krylov-Schur computes every
  *    eigenpair of [a, b] by spectrum slicing (shift-and-invert, MUMPS Cholesky with inertia,
  *    ICNTL(13) = 1 and ICNTL(24) = 1; npart sub-intervals solved by groups of processes at
@@ -31,11 +33,12 @@
  *    slices the abort flag is polled (on every process) and progress reported, since spectrum
  *    slicing calls no monitor. In each slice the inertia at its ends must count the pairs SLEPc
  *    returned. The m smallest are kept and D-normalized.
- * 4. Checks, distributed (PETSc Mat and Vec operations): D-orthonormality, relative residuals
- *    and componentwise backward errors (the core's definitions and tolerances, Verification.h).
- *    A pair above both tolerances is an error.
- * 5. Rows. A VecScatter brings every process the values of its points, the copies of seam
- *    points owned elsewhere included; those are flagged DUPLICATEPOINT, as in the gather path.
+ * 4. Rows and checks. Each pair is checked on the distributed vectors (relative residual and
+ *    componentwise backward error, the core's definitions and tolerances, Verification.h; a
+ *    pair above both is an error) and a VecScatter writes its values into the rows of every
+ *    process's points, copies of seam points owned elsewhere included (flagged
+ *    DUPLICATEPOINT, as in the gather path). Those rows are the only copy of the harmonics a
+ *    process keeps: the D-orthonormality is measured against them, 32 pairs at a time.
  *
  * Errors of SLEPc, PETSc and MUMPS are thrown as std::runtime_error carrying their message and
  * what to change; they arise on every process alike (the calls are collective).
@@ -49,8 +52,11 @@
 #include <stdexcept>
 #include <string>
 
-class vtkPolyData;
 class vtkMultiProcessController;
+namespace spectral
+{
+struct TriangleMesh;
+}
 
 namespace vtkManifoldHarmonicsSlepc
 {
@@ -112,14 +118,17 @@ public:
 };
 
 /**
- * The m smallest eigenpairs of the surface whose piece `piece` (triangles only; ghost cells
- * are left out) this process holds. Collective over all processes of `controller` (nullptr or
- * one process: a serial run), which must be those of MPI_COMM_WORLD. Initializes SLEPc on
- * first use (after MPI, which ParaView initializes; SLEPc initializes MPI itself when nobody
- * did and then finalizes both at exit).
- * \throws std::runtime_error with a message for the user, vtkManifoldHarmonicsSlepc::Cancelled.
+ * The m smallest eigenpairs of the mesh whose piece `piece` this process holds: every point of
+ * the piece (its rows in the result are in this order) and its triangles or tetrahedra, ghost
+ * cells already left out (vtkManifoldHarmonicsArrays::ToCoreMesh). Collective over all processes of
+ * `controller` (nullptr or one process: a serial run), which must be those of MPI_COMM_WORLD.
+ * Initializes SLEPc on first use (after MPI, which ParaView initializes; SLEPc initializes MPI
+ * itself when nobody did and then finalizes both at exit). \throws std::runtime_error with a
+ * message for the user, vtkManifoldHarmonicsSlepc::Cancelled.
  */
-Result Solve(vtkMultiProcessController* controller, vtkPolyData* piece, const Settings& settings);
+Result Solve(vtkMultiProcessController* controller,
+  const spectral::TriangleMesh& piece,
+  const Settings& settings);
 } // namespace vtkManifoldHarmonicsSlepc
 
 #endif

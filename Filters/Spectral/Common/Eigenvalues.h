@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Eigenvalues.h
- * @brief The one rule that tells the zero eigenvalues of a Laplacian from the others.
+ * @brief The one rule that tells the zero eigenvalues of a Laplacian from the others, and
+ *        Weyl's estimate of the k-th eigenvalue.
  *
  * The constant harmonics (one per connected component) have the eigenvalue 0, which a solver
  * returns as round-off of the size of the whole spectrum: a few ulps of its top lambda_max,
@@ -20,6 +21,8 @@
 #ifndef spectral_Eigenvalues_h
 #define spectral_Eigenvalues_h
 
+#include <cmath>
+
 namespace spectral
 {
 /// Eigenvalues at most this fraction of the top of the spectrum count as zero.
@@ -36,6 +39,19 @@ constexpr double ZeroEigenvalueTolerance = 1e-10;
 inline bool IsZeroEigenvalue(double lambda, double scale)
 {
   return lambda <= ZeroEigenvalueTolerance * scale;
+}
+
+/**
+ * Weyl's law for the k-th eigenvalue of the Laplace-Beltrami operator (Neumann or Dirichlet
+ * alike): the number of eigenvalues below lambda grows as A lambda / (4 pi) on a surface of
+ * area A and as V lambda^(3/2) / (6 pi^2) in a volume V, so lambda_k ~ 4 pi k / A, or
+ * (6 pi^2 k / V)^(2/3). An estimate for placing shifts and intervals, not a bound.
+ * \param measure The area (dimension 2) or the volume (dimension 3), > 0.
+ */
+inline double WeylEigenvalue(double k, double measure, int dimension)
+{
+  const double pi = 3.14159265358979323846;
+  return dimension == 3 ? std::pow(6.0 * pi * pi * k / measure, 2.0 / 3.0) : 4.0 * pi * k / measure;
 }
 } // namespace spectral
 
