@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Basis.h"
 
+#include "Solver/Verification.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,11 +68,9 @@ void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const Basis
 }
 
 //------------------------------------------------------------------------------
-// The relative residual eigenpairs can meet in double precision. Round-off in L h is about
-// eps lambda_max, measured against the lowest frequencies; lambda_max comes from Gershgorin's
-// bound on D^-1 L (D the row sums of M, the lumped mass), the lowest frequency from the size of
-// the surface, (pi / d)^2 with d its diameter. Sets `ratio` to lambda_max / lambda_low.
-double AchievableResidual(const SparseMatrix& L,
+// AchievableResidual (Verification.h) of L h = lambda M h: Gershgorin's bound on D^-1 L (D the
+// row sums of M, the lumped mass) and the mesh's diameter. Sets `ratio`.
+double OperatorsAchievableResidual(const SparseMatrix& L,
   const SparseMatrix& M,
   double diameter,
   double& ratio)
@@ -82,9 +82,7 @@ double AchievableResidual(const SparseMatrix& L,
     const double sum = L.col(j).cwiseAbs().sum();
     top = std::max(top, lumped[j] > 0.0 ? sum / lumped[j] : 0.0);
   }
-  const double pi = 3.14159265358979323846;
-  ratio = top * diameter * diameter / (pi * pi);
-  return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
+  return AchievableResidual(top, diameter, ratio);
 }
 
 /// The settings and the state that SolveWithFallbacks shares across components.
@@ -100,8 +98,8 @@ struct Fallbacks
 };
 
 //------------------------------------------------------------------------------
-// SmallestEigenpairs with the two fallbacks of the file documentation of Basis.h. Beyond a
-// residual of 1e-4 the eigenpairs would be meaningless: the failure is passed on with why.
+// SmallestEigenpairs with the two fallbacks of the file documentation of Basis.h. Beyond
+// MeaningfulResidual the eigenpairs would be meaningless: the failure is passed on with why.
 EigenResult SolveWithFallbacks(const SparseMatrix& L,
   const SparseMatrix& M,
   const PairRequest& request,
@@ -122,28 +120,20 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
   catch (const SolverFailure& e)
   {
     double ratio = 0.0;
-    const double achievable = AchievableResidual(L, M, state.Diameter, ratio);
+    const double achievable = OperatorsAchievableResidual(L, M, state.Diameter, ratio);
     if (!(achievable > options.ResidualTolerance))
     {
       throw;
     }
-    std::ostringstream why;
-    why << "the operators are badly conditioned (largest / lowest eigenvalue about " << ratio
-        << ", from needle, sliver or tiny triangles)";
-    if (achievable > 1e-4)
+    if (achievable > MeaningfulResidual)
     {
-      throw SolverFailure(std::string(e.what()) + "; " + why.str() +
-          " beyond what double precision resolves: remove them (merge close points, e.g. with "
-          "vtkCleanPolyData and a tolerance) or remesh",
-        e.Converged);
+      throw SolverFailure(std::string(e.what()) + "; " + UnresolvableResidual(ratio), e.Converged);
     }
     if (!state.Relaxed)
     {
-      std::ostringstream text;
-      text << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
-           << options.ResidualTolerance << ": " << why.str()
-           << ". Laplacian = Intrinsic Delaunay or remeshing improves this.";
-      Report({ text.str() }, *state.Warnings, *state.Basis);
+      Report({ RelaxedResidualWarning(achievable, options.ResidualTolerance, ratio) },
+        *state.Warnings,
+        *state.Basis);
       state.Relaxed = true;
     }
     options.ResidualTolerance = achievable;

@@ -6,6 +6,9 @@
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 
+#include <limits>
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +16,41 @@
 
 namespace spectral
 {
+//------------------------------------------------------------------------------
+double AchievableResidual(double top, double diameter, double& ratio)
+{
+  const double pi = 3.14159265358979323846;
+  ratio = top * diameter * diameter / (pi * pi);
+  return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
+}
+
+//------------------------------------------------------------------------------
+std::string BadConditioning(double ratio)
+{
+  std::ostringstream why;
+  why << "the operators are badly conditioned (largest / lowest eigenvalue about " << ratio
+      << ", from needle, sliver or tiny triangles)";
+  return why.str();
+}
+
+//------------------------------------------------------------------------------
+std::string RelaxedResidualWarning(double achievable, double tolerance, double ratio)
+{
+  std::ostringstream text;
+  text << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
+       << tolerance << ": " << BadConditioning(ratio)
+       << ". Laplacian = Intrinsic Delaunay or remeshing improves this.";
+  return text.str();
+}
+
+//------------------------------------------------------------------------------
+std::string UnresolvableResidual(double ratio)
+{
+  return BadConditioning(ratio) +
+    " beyond what double precision resolves: remove them (merge close points, e.g. with "
+    "vtkCleanPolyData and a tolerance) or remesh";
+}
+
 namespace detail
 {
 //------------------------------------------------------------------------------

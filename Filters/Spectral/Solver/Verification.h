@@ -18,10 +18,36 @@
 #include "Common/Mesh.h"
 #include "Solver/EigenSolver.h"
 
+#include <string>
 #include <vector>
 
 namespace spectral
 {
+/**
+ * The relative residual eigenpairs can meet in double precision: round-off in L h is about
+ * eps lambda_max, measured against the lowest frequencies, (pi / d)^2 for a mesh of diameter d;
+ * 10 eps lambda_max / (pi / d)^2. Solvers that miss ResidualTolerance on a badly conditioned
+ * mesh (needles, slivers, tiny triangles) accept this instead, with RelaxedResidualWarning,
+ * up to MeaningfulResidual.
+ * \param top lambda_max from Gershgorin's bound on D^-1 L: max_i sum_j |L_ij| / D_i (D the row
+ *        sums of M).
+ * \param diameter The mesh's diameter, in the units of L and M.
+ * \param ratio Set to lambda_max / (pi / d)^2.
+ */
+double AchievableResidual(double top, double diameter, double& ratio);
+
+/// Beyond this relative residual the eigenpairs would be meaningless: an error, not a warning.
+constexpr double MeaningfulResidual = 1e-4;
+
+/// Why a mesh cannot reach the tolerance, for messages: its conditioning `ratio`.
+std::string BadConditioning(double ratio);
+
+/// The warning of a solve verified to `achievable` instead of `tolerance`.
+std::string RelaxedResidualWarning(double achievable, double tolerance, double ratio);
+
+/// What a failure beyond MeaningfulResidual adds to the solver's message.
+std::string UnresolvableResidual(double ratio);
+
 namespace detail
 {
 /**
