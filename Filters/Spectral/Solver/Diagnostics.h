@@ -5,7 +5,7 @@
  * @brief What the eigensolver reports besides its pairs: the seconds of each stage
  *        (EigenTimings) and the numbers quoted in its failure messages.
  *
- * Used by the files of the eigensolver (Solver/*.cxx). No test reads the messages or the
+ * Used by the eigensolver's source files in Solver/. No test reads the messages or the
  * seconds; bench/ManifoldHarmonicsBench prints the seconds.
  */
 #ifndef spectral_Diagnostics_h
