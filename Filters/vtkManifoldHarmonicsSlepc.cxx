@@ -1063,16 +1063,7 @@ Result Solve(vtkMultiProcessController* controller,
   // 4. Checks with the core's definitions (Verification.h), on distributed vectors: the
   // relative residual needs the whole spectrum's scale, the orthonormality the whole Gram matrix.
   stage("Verify");
-  const double top = m > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
-  double reference = top;
-  for (int k = 0; k < m; ++k)
-  {
-    if (!spectral::IsZeroEigenvalue(std::abs(lambda[k]), top))
-    {
-      reference = std::min(reference, std::abs(lambda[k]));
-    }
-  }
-  reference = std::max(reference, 1e-6 * checks.TraceOverMass);
+  const double reference = spectral::ResidualReference(lambda, checks.TraceOverMass);
   const spectral::EigenOptions tolerances;
   std::vector<double> relative(static_cast<std::size_t>(m));
   for (int k = 0; k < m; ++k)

@@ -51,6 +51,23 @@ std::string UnresolvableResidual(double ratio)
     "vtkCleanPolyData and a tolerance) or remesh";
 }
 
+//------------------------------------------------------------------------------
+double ResidualReference(const Vector& lambda, double traceRatio)
+{
+  const double top = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  double reference = top;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    if (!IsZeroEigenvalue(std::abs(lambda[k]), top))
+    {
+      reference = std::min(reference, std::abs(lambda[k]));
+    }
+  }
+  // Without a non-zero eigenvalue among the pairs (m = 1, or only the constants of components),
+  // fall back to a small fraction of the operator's scale, the ratio of the traces.
+  return std::max(reference, 1e-6 * traceRatio);
+}
+
 namespace detail
 {
 //------------------------------------------------------------------------------
@@ -168,19 +185,8 @@ PairFigures ResidualFigures(const SparseMatrix& L,
 {
   const Vector rowSums = M * Vector::Ones(M.cols());
   const Vector inverseMass = rowSums.cwiseInverse();
-  const double top = lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0;
-  double reference = top;
-  for (Eigen::Index k = 0; k < lambda.size(); ++k)
-  {
-    if (!IsZeroEigenvalue(std::abs(lambda[k]), top))
-    {
-      reference = std::min(reference, std::abs(lambda[k]));
-    }
-  }
-  // Without a non-zero eigenvalue among the pairs (m = 1, or only the constants of components),
-  // fall back to a small fraction of the operator's scale, the ratio of the traces.
-  const double traceRatio = L.diagonal().sum() / std::max(rowSums.sum(), 1e-300);
-  reference = std::max(reference, 1e-6 * traceRatio);
+  const double reference =
+    ResidualReference(lambda, L.diagonal().sum() / std::max(rowSums.sum(), 1e-300));
   const SparseMatrix absL = backward ? SparseMatrix(L.cwiseAbs()) : SparseMatrix();
   const SparseMatrix absM = backward ? SparseMatrix(M.cwiseAbs()) : SparseMatrix();
   // A block of columns at a time: the residuals of all m pairs at once would take twice the

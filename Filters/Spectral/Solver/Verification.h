@@ -36,6 +36,13 @@ namespace spectral
  */
 double AchievableResidual(double top, double diameter, double& ratio);
 
+/**
+ * The reference eigenvalue of relative residuals: the smallest non-zero |lambda_k| of the pairs
+ * (IsZeroEigenvalue against the largest), at least 1e-6 traceRatio.
+ * \param traceRatio trace(L) / sum(M): the operator's scale.
+ */
+double ResidualReference(const Vector& lambda, double traceRatio);
+
 /// Beyond this relative residual the eigenpairs would be meaningless: an error, not a warning.
 constexpr double MeaningfulResidual = 1e-4;
 
