@@ -1121,8 +1121,16 @@ Result Solve(vtkMultiProcessController* controller,
     m > 0 ? (globalGram - spectral::DenseMatrix::Identity(m, m)).cwiseAbs().maxCoeff() : 0.0;
   if (!(result.OrthonormalityError <= residualTolerance * 100))
   {
+    // On badly conditioned operators (debris of a few triangles holding a near-coincident
+    // point: masses spanning 1e8, eigenvalues 1e17) the orthogonalization in the D inner
+    // product loses what a lower Tolerance cannot bring back.
+    const std::string remedy = achievable > tolerances.ResidualTolerance
+      ? "; " + spectral::BadConditioning(ratio) +
+        ": merge close points (vtkCleanPolyData, Clean, with a tolerance), or use the Built-in "
+        "solver, which solves each connected component on its own"
+      : ": lower Tolerance";
     throw std::runtime_error("the eigenvectors are D-orthonormal to " +
-      std::to_string(result.OrthonormalityError) + " only: lower Tolerance");
+      std::to_string(result.OrthonormalityError) + " only" + remedy);
   }
   progress(0.95);
 
