@@ -11,6 +11,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -532,6 +534,103 @@ void Cancellation()
 }
 
 //------------------------------------------------------------------------------
+/**
+ * Debris of a range scan: the triangle a b c split 1-to-3 at p, r (of its size) from corner a,
+ * and with `bowtie` a second one, a' b c', split at 3 r from a', sharing corner b. The points
+ * a, b, c, p (then a', c', p') are stored with a moved to place `place`.
+ */
+TriangleMesh SplitTriangles(double r, int place, bool bowtie)
+{
+  const Eigen::RowVector3d a(0.0, 0.0, 0.0);
+  const Eigen::RowVector3d b(1.0, 0.1, 0.0);
+  const Eigen::RowVector3d c(0.3, 0.9, 0.2);
+  const Eigen::RowVector3d a2(2.0, 0.3, 0.1);
+  const Eigen::RowVector3d c2(1.6, -0.7, 0.3);
+  std::vector<Eigen::RowVector3d> corners = { a, b, c, a + 0.5 * r * (b - a + c - a) };
+  std::vector<std::array<int, 3>> faces = { { 0, 1, 3 }, { 1, 2, 3 }, { 2, 0, 3 } };
+  if (bowtie)
+  {
+    corners.insert(corners.end(), { a2, c2, a2 + 1.5 * r * (b - a2 + c2 - a2) });
+    faces.insert(faces.end(), { { 4, 1, 6 }, { 1, 5, 6 }, { 5, 4, 6 } });
+  }
+  std::vector<int> order(corners.size());
+  std::iota(order.begin(), order.end(), 0);
+  order.erase(order.begin());
+  order.insert(order.begin() + place, 0);
+  std::vector<int> index(corners.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    index[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+  }
+  TriangleMesh mesh;
+  mesh.Vertices.resize(static_cast<Eigen::Index>(corners.size()), 3);
+  for (std::size_t k = 0; k < corners.size(); ++k)
+  {
+    mesh.Vertices.row(index[k]) = corners[k];
+  }
+  mesh.Faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    for (int v = 0; v < 3; ++v)
+    {
+      mesh.Faces(static_cast<Eigen::Index>(f), v) =
+        index[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(v)])];
+    }
+  }
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+void NearCoincidentDebris()
+{
+  // SplitTriangles: point a keeps a lumped mass of about r times the others', its edge to p a
+  // cotangent weight of about 1 / r, so the eigenvalues span 1.5e17 at r = 1e-8. A dense solve
+  // of the plain pencil alone failed with a at place 2 or 3 (from r = 1e-5: backward error
+  // 3e-7, a thrown error). The 3 smallest pairs at r = 1e-4 .. 1e-8, with a at every place:
+  // backward errors within the solver's tolerance (1e-8), M-orthonormal, lambda_0 = 0 to 1e-6
+  // lambda_1, and lambda_1, lambda_2 converging linearly as r -> 0: each tenfold smaller r
+  // moves them at most a fifth of what the previous one did (a tenth in exact arithmetic),
+  // down to 1e-7 lambda_1, the rounding of the operators' entries at r = 1e-8 (6e-8 of
+  // lambda_1 for the single triangle, from a 60-digit solve of the same matrices).
+  for (const bool bowtie : { false, true })
+  {
+    const int places = bowtie ? 7 : 4;
+    for (int place = 0; place < places; ++place)
+    {
+      Vector previous;
+      double step = 0.0;
+      for (const double r : { 1e-4, 1e-5, 1e-6, 1e-7, 1e-8 })
+      {
+        const Problem p = Lumped(SplitTriangles(r, place, bowtie));
+        const EigenResult result = Solve(p, 3);
+        const Vector& lambda = result.Eigenvalues;
+        const std::string name = std::string(bowtie ? "two split triangles" : "split triangle") +
+          " at r = " + Str(r) + ", a at place " + std::to_string(place);
+        CheckBelow(std::abs(lambda[0]), 1e-6 * lambda[1], name + ": |lambda_0| (of lambda_1)");
+        CheckBelow(BackwardErrors(p.L, p.M, lambda, result.Eigenvectors).maxCoeff(),
+          EigenOptions().BackwardErrorTolerance,
+          name + ": componentwise backward error");
+        CheckBelow(
+          OrthonormalityError(result.Eigenvectors, p.M), 1e-10, name + ": max |H^T M H - I|");
+        if (previous.size() > 0)
+        {
+          const double moved =
+            (lambda.tail(2) - previous.tail(2)).cwiseAbs().maxCoeff() / lambda[1];
+          if (step > 0.0)
+          {
+            CheckBelow(moved,
+              0.2 * step + 1e-7,
+              name + ": lambda_1, lambda_2 moved (of lambda_1) at most a fifth of the last step");
+          }
+          step = moved;
+        }
+        previous = lambda;
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void InvalidSizes()
 {
   const Problem p = Lumped(Icosphere(1));
@@ -558,6 +657,7 @@ const Case Cases[] = {
   { "StartAbove", StartAbove },
   { "InertiaCounts", InertiaCounts },
   { "Cancellation", Cancellation },
+  { "NearCoincidentDebris", NearCoincidentDebris },
   { "InvalidSizes", InvalidSizes },
 };
 } // namespace

@@ -22,7 +22,10 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <string>
 
 namespace spectral
@@ -88,21 +91,175 @@ void NormalizeSigns(DenseMatrix& Phi)
   }
 }
 
-/// All eigenpairs of the dense pencil, then the m smallest from index `first`.
-EigenResult DenseEigenpairs(const SparseMatrix& L, const SparseMatrix& M, int first, int m)
+/**
+ * The shift c of InvertedEigenpairs: the smallest positive L_ii / M_ii, of the order of the
+ * lowest eigenvalues of a debris component (at its regular corners) and of the top of a
+ * regular mesh's spectrum; the trace ratio, or 1, where there is none.
+ */
+double InvertedShift(const SparseMatrix& L, const SparseMatrix& M)
+{
+  const Vector l = L.diagonal();
+  const Vector d = M.diagonal();
+  double shift = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < l.size(); ++i)
+  {
+    if (d[i] > 0.0 && l[i] > 0.0 && std::isfinite(l[i] / d[i]))
+    {
+      shift = std::min(shift, l[i] / d[i]);
+    }
+  }
+  if (!std::isfinite(shift))
+  {
+    shift = d.sum() > 0.0 ? l.sum() / d.sum() : 0.0;
+  }
+  return shift > 0.0 && std::isfinite(shift) ? shift : 1.0;
+}
+
+/**
+ * Pairs first .. first + m - 1 of the pencil solved inverted, M x = mu (L + c M) x:
+ * lambda = 1/mu - c, h = x / sqrt(mu) (then h^T M h = mu x^T (L + c M) x = 1). False where
+ * L + c M is not numerically positive definite. mu is known to eps / c, so lambda to about
+ * eps (lambda + c)^2 / c: eps c below c, a relative eps lambda / c above.
+ */
+bool InvertedEigenpairs(const DenseMatrix& Ld,
+  const DenseMatrix& Md,
+  double shift,
+  int first,
+  int m,
+  EigenResult& result)
+{
+  const Eigen::Index n = Ld.rows();
+  const DenseMatrix shifted = Ld + shift * Md;
+  Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> inverted(Md, shifted);
+  if (inverted.info() != Eigen::Success || !(inverted.eigenvalues()[n - first - m] > 0.0))
+  {
+    return false;
+  }
+  result.Eigenvalues.resize(m);
+  result.Eigenvectors.resize(n, m);
+  for (int k = 0; k < m; ++k)
+  {
+    // Ascending lambda is descending mu.
+    const Eigen::Index j = n - 1 - first - k;
+    const double mu = inverted.eigenvalues()[j];
+    result.Eigenvalues[k] = 1.0 / mu - shift;
+    result.Eigenvectors.col(k) = inverted.eigenvectors().col(j) / std::sqrt(mu);
+  }
+  return true;
+}
+
+/**
+ * Pairs first .. first + m - 1 of the plain pencil L h = lambda M h, its rows permuted by
+ * `permutation` (identity: as given) and put back. False where M is not numerically positive
+ * definite.
+ */
+bool PlainEigenpairs(const DenseMatrix& Ld,
+  const DenseMatrix& Md,
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>& permutation,
+  int first,
+  int m,
+  EigenResult& result)
+{
+  Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> solver(
+    permutation * Ld * permutation.transpose(), permutation * Md * permutation.transpose());
+  if (solver.info() != Eigen::Success)
+  {
+    return false;
+  }
+  result.Eigenvalues = solver.eigenvalues().segment(first, m);
+  result.Eigenvectors = permutation.transpose() * solver.eigenvectors().middleCols(first, m);
+  return true;
+}
+
+/// The permutation that puts the rows in decreasing order of L_ii / M_ii.
+Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> DecreasingRatio(const SparseMatrix& L,
+  const SparseMatrix& M)
+{
+  const Vector ratio = L.diagonal().cwiseQuotient(M.diagonal());
+  std::vector<int> order(static_cast<std::size_t>(ratio.size()));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(
+    order.begin(), order.end(), [&ratio](int a, int b) { return ratio[a] > ratio[b]; });
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation(ratio.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    permutation.indices()[order[k]] = static_cast<int>(k);
+  }
+  return permutation;
+}
+
+/**
+ * All eigenpairs of the dense pencil, then the m smallest from index `first`.
+ *
+ * A dense solver's eigenvalues carry an absolute error of about eps lambda_max, and on a
+ * graded pencil more, depending on the order of the points: debris of a range scan holding a
+ * near-coincident point (a triangle split 1-to-3 at 1e-8 of its size from a corner, alone:
+ * eigenvalues spanning 1e17) came out with its smallest pairs wrong, even negative (backward
+ * errors up to 0.9). Where a pair of the plain pencil misses `tolerance` (its componentwise
+ * backward error, as the final check measures it), the pencil is also solved inverted
+ * (InvertedEigenpairs, c = InvertedShift), which gets the smallest pairs of such debris to
+ * round-off, and plain with its rows in decreasing order of L_ii / M_ii (a graded matrix is
+ * reduced to tridiagonal form the more accurately the larger entries come first), which gets
+ * its largest ones; each pair is taken from the solve with the smallest backward error.
+ * Mixed, the pairs must stay ascending and M-orthonormal to `tolerance`; otherwise the solve
+ * with the smallest worst error is kept.
+ */
+EigenResult DenseEigenpairs(const SparseMatrix& L,
+  const SparseMatrix& M,
+  int first,
+  int m,
+  double tolerance)
 {
   const DenseMatrix Ld(L);
   const DenseMatrix Md(M);
-  Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> solver(Ld, Md);
-  if (solver.info() != Eigen::Success)
+  const Eigen::Index n = Ld.rows();
+  std::vector<EigenResult> solves(1);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> identity(n);
+  identity.setIdentity();
+  if (!PlainEigenpairs(Ld, Md, identity, first, m, solves[0]))
   {
     throw SolverFailure("the dense generalized eigensolver failed (is the mass matrix positive "
                         "definite?)");
   }
-  EigenResult result;
-  result.Eigenvalues = solver.eigenvalues().segment(first, m);
-  result.Eigenvectors = solver.eigenvectors().middleCols(first, m);
-  return result;
+  std::vector<Vector> errors = { BackwardErrors(
+    L, M, solves[0].Eigenvalues, solves[0].Eigenvectors) };
+  if (errors[0].maxCoeff() <= tolerance)
+  {
+    return solves[0];
+  }
+  EigenResult other;
+  if (InvertedEigenpairs(Ld, Md, InvertedShift(L, M), first, m, other))
+  {
+    solves.push_back(other);
+  }
+  if (PlainEigenpairs(Ld, Md, DecreasingRatio(L, M), first, m, other))
+  {
+    solves.push_back(other);
+  }
+  std::size_t best = 0;
+  for (std::size_t s = 1; s < solves.size(); ++s)
+  {
+    errors.push_back(BackwardErrors(L, M, solves[s].Eigenvalues, solves[s].Eigenvectors));
+    best = errors[s].maxCoeff() < errors[best].maxCoeff() ? s : best;
+  }
+  EigenResult mixed = solves[0];
+  bool ascending = true;
+  for (int k = 0; k < m; ++k)
+  {
+    std::size_t from = 0;
+    for (std::size_t s = 1; s < solves.size(); ++s)
+    {
+      from = errors[s][k] < errors[from][k] ? s : from;
+    }
+    mixed.Eigenvalues[k] = solves[from].Eigenvalues[k];
+    mixed.Eigenvectors.col(k) = solves[from].Eigenvectors.col(k);
+    ascending = ascending && (k == 0 || mixed.Eigenvalues[k] >= mixed.Eigenvalues[k - 1]);
+  }
+  if (ascending && OrthonormalityError(mixed.Eigenvectors, M) <= tolerance)
+  {
+    return mixed;
+  }
+  return solves[best];
 }
 
 /// The dense path: problems of at most DenseThreshold unknowns, or with m > n / 3.
@@ -120,7 +277,7 @@ EigenResult SolveDensely(const SparseMatrix& L,
   }
   monitor.ThrowIfCancelled();
   const Clock::time_point start = Clock::now();
-  EigenResult result = DenseEigenpairs(L, M, options.StartIndex, m);
+  EigenResult result = DenseEigenpairs(L, M, options.StartIndex, m, options.BackwardErrorTolerance);
   result.Seconds.RayleighRitz = SecondsSince(start);
   return result;
 }

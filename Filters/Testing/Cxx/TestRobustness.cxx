@@ -462,10 +462,13 @@ std::vector<Case> Corpus()
     }
     cases.push_back({ "needle triangles inside the surface", mesh, 20, Expect::Valid, "", -1 });
   }
+  for (const int resolution : { 16, 40 })
   {
     // A sliver hanging on a non-manifold fin: angle of almost pi at its apex, 3 triangles on
-    // its long edge. Only flips on the tufted cover, which reach non-manifold edges, remove it.
-    auto mesh = Sphere(16);
+    // its long edge (lambda_max / lambda_1 about 4e14). The dense solve of the small mesh
+    // (16: 212 points) missed the backward error test by far (1e-5) until it also solved the
+    // inverted pencil (EigenSolver.cxx, DenseEigenpairs); the bands (40: 1522 points) meet it.
+    auto mesh = Sphere(resolution);
     vtkIdType p, q, r;
     FirstEdge(mesh, p, q, r);
     double a[3], b[3];
@@ -474,8 +477,12 @@ std::vector<Case> Corpus()
     const vtkIdType needle = mesh->GetPoints()->InsertNextPoint(
       (a[0] + b[0]) / 2 + 1e-7, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2 + 1e-7);
     AddTriangle(mesh, q, p, needle);
-    cases.push_back(
-      { "sliver on a non-manifold edge", mesh, 20, Expect::Error, "and backward error", -1, true });
+    cases.push_back({ "sliver on a non-manifold edge, " + std::to_string(resolution) + "^2 sphere",
+      mesh,
+      20,
+      Expect::Valid,
+      "",
+      -1 });
   }
   {
     // Needle-only surface: a plane whose points are squeezed along y.
