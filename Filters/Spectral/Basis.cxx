@@ -91,6 +91,8 @@ struct Fallbacks
   EigenOptions Options;
   /// Diameter of the mesh: the scale of its lowest frequencies.
   double Diameter = 0.0;
+  /// Whether each component's null space is its constants (EigenOptions::ConstantNullSpace).
+  bool ConstantHarmonics = true;
   const Monitor* Warnings = nullptr;
   BasisResult* Basis = nullptr;
   /// Whether the relaxed tolerance was announced (once, whatever the number of components).
@@ -112,6 +114,9 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
     (wanted == 1 && request.StartIndex == 0 && L.rows() > 1) ? 2 : wanted;
   options.StartIndex = request.StartIndex;
   options.StartValue = request.StartValue;
+  // Every solve is of one connected component: with natural conditions its constant harmonic
+  // is known, and deflated.
+  options.ConstantNullSpace = state.ConstantHarmonics;
   EigenResult result;
   try
   {
@@ -359,6 +364,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   state.Options = options.Solver;
   state.Options.KeepEigenvectors = !options.EigenvaluesOnly;
   state.Diameter = ops.Diameter;
+  state.ConstantHarmonics = ops.ConstantHarmonics;
   state.Warnings = &monitor;
   state.Basis = &result;
   const PairSolver solve =

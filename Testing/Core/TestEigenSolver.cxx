@@ -631,6 +631,91 @@ void NearCoincidentDebris()
 }
 
 //------------------------------------------------------------------------------
+// With ConstantNullSpace, the first pair is (0, 1/sqrt(area)) exactly and the others lie in its
+// M-orthogonal complement; they are the pairs of the plain solve (values to 1e-9 of lambda_1 or
+// relative, eigenspaces of the sphere's multiplets to 1e-6), on the dense path, the band path
+// with either Lanczos method and either mass, and without the vectors.
+void CheckExactZeroMode(const Problem& p, int m, EigenOptions options, const std::string& name)
+{
+  const EigenResult plain = Solve(p, m, options);
+  options.ConstantNullSpace = true;
+  const EigenResult r = Solve(p, m, options);
+  Check(r.Eigenvalues[0] == 0.0, name + ": lambda_0 is exactly 0 (" + Str(r.Eigenvalues[0]) + ")");
+  CheckSameValues(r.Eigenvalues, plain.Eigenvalues, 1e-9, name + ": the plain solve's eigenvalues");
+  if (!options.KeepEigenvectors)
+  {
+    return;
+  }
+  const double constant = 1.0 / std::sqrt(p.M.sum());
+  Check((r.Eigenvectors.col(0).array() == constant).all(), name + ": h_0 is exactly 1/sqrt(area)");
+  const Vector overlap =
+    r.Eigenvectors.rightCols(m - 1).transpose() * (p.M * r.Eigenvectors.col(0));
+  CheckBelow(overlap.cwiseAbs().maxCoeff(), 1e-12, name + ": max |h_0^T M h_k|, k >= 1");
+  CheckPairs(p, r, name);
+  CheckSameSphereSubspaces(r.Eigenvectors, plain.Eigenvectors, p.M, 5, 1e-6, name);
+}
+
+void ExactZeroModes()
+{
+  const TriangleMesh small = Icosphere(3); // 642 points: the dense path
+  const TriangleMesh large = Icosphere(4); // 2562 points: bands
+  const int m = 36;                        // l = 0..5
+  CheckExactZeroMode(Lumped(small), m, EigenOptions(), "icosphere(3), dense, lumped");
+  CheckExactZeroMode(Consistent(small), m, EigenOptions(), "icosphere(3), dense, consistent");
+  EigenOptions bands;
+  bands.BandSize = 20;
+  CheckExactZeroMode(Lumped(large), m, bands, "icosphere(4), block bands, lumped");
+  CheckExactZeroMode(Consistent(large), m, bands, "icosphere(4), block bands, consistent");
+  EigenOptions spectra = bands;
+  spectra.Method = LanczosMethod::Spectra;
+  CheckExactZeroMode(Lumped(large), m, spectra, "icosphere(4), Spectra bands, lumped");
+  EigenOptions alone = bands;
+  alone.KeepEigenvectors = false;
+  CheckExactZeroMode(Lumped(large), m, alone, "icosphere(4), bands, eigenvalues only");
+  EigenOptions one;
+  one.ConstantNullSpace = true;
+  const EigenResult single = Solve(Lumped(small), 1, one);
+  Check(single.Eigenvalues.size() == 1 && single.Eigenvalues[0] == 0.0,
+    "m = 1: the constant pair alone");
+}
+
+//------------------------------------------------------------------------------
+// Debris whose rounded operators move the zero eigenvalue (NearCoincidentDebris): with
+// ConstantNullSpace it is exactly 0, the other pairs keep their backward errors within the
+// solver's tolerance, M-orthonormal, and equal the plain solve's to 1e-6 of lambda_1.
+void ZeroModeOfDebris()
+{
+  for (const bool bowtie : { false, true })
+  {
+    for (int place = 0; place < 4; ++place)
+    {
+      for (const double r : { 1e-4, 1e-6, 1e-8 })
+      {
+        const Problem p = Lumped(SplitTriangles(r, place, bowtie));
+        EigenOptions options;
+        options.ConstantNullSpace = true;
+        const int m = 3;
+        const EigenResult plain = Solve(p, m);
+        const EigenResult result = Solve(p, m, options);
+        const std::string name = std::string(bowtie ? "two split triangles" : "split triangle") +
+          " at r = " + Str(r) + ", a at place " + std::to_string(place);
+        Check(result.Eigenvalues[0] == 0.0, name + ": lambda_0 exactly 0");
+        CheckBelow(BackwardErrors(p.L, p.M, result.Eigenvalues, result.Eigenvectors).maxCoeff(),
+          options.BackwardErrorTolerance,
+          name + ": componentwise backward error");
+        CheckBelow(
+          OrthonormalityError(result.Eigenvectors, p.M), 1e-10, name + ": max |H^T M H - I|");
+        CheckBelow(
+          (result.Eigenvalues.tail(m - 1) - plain.Eigenvalues.tail(m - 1)).cwiseAbs().maxCoeff() /
+            plain.Eigenvalues[1],
+          1e-6,
+          name + ": lambda_k, k >= 1, as the plain solve's (of lambda_1)");
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void InvalidSizes()
 {
   const Problem p = Lumped(Icosphere(1));
@@ -659,6 +744,8 @@ const Case Cases[] = {
   { "Cancellation", Cancellation },
   { "NearCoincidentDebris", NearCoincidentDebris },
   { "InvalidSizes", InvalidSizes },
+  { "ExactZeroModes", ExactZeroModes },
+  { "ZeroModeOfDebris", ZeroModeOfDebris },
 };
 } // namespace
 

@@ -3,6 +3,7 @@
 // Properties of the point-cloud Laplacian (Filters/Spectral/Operators/PointCloud.h) and of its
 // nearest-neighbour search (Operators/NearestNeighbors.h).
 #include "Basis.h"
+#include "BasisChecks.h"
 #include "Checks.h"
 #include "Common/Threads.h"
 #include "Filtering/Transfer.h"
@@ -614,6 +615,22 @@ void ThreadsMatchOneThread()
 }
 
 //------------------------------------------------------------------------------
+// Zero modes by construction in point clouds: two sphere clouds apart (radii 1 and 0.5): two
+// eigenvalues exactly 0, the constants of the clouds, the other harmonics M-orthogonal to them
+// (BasisChecks.h).
+void ZeroModesOfClouds()
+{
+  Points second = 0.5 * SphereCloud(1500, 5);
+  second.col(0).array() += 4.0;
+  TriangleMesh clouds;
+  clouds.Vertices.resize(3000 + second.rows(), 3);
+  clouds.Vertices << SphereCloud(3000, 3), second;
+  BasisOptions options;
+  options.NumberOfHarmonics = 20;
+  CheckZeroModes(ComputeBasis(clouds, options), 2, "two sphere clouds: ");
+}
+
+//------------------------------------------------------------------------------
 void ProgressAndCancellation()
 {
   const Points cloud = SphereCloud(5000, 14);
@@ -643,6 +660,7 @@ void ProgressAndCancellation()
 }
 
 const Case Cases[] = {
+  { "ZeroModesOfClouds", ZeroModesOfClouds },
   { "NearestNeighborsMatchBruteForce", NearestNeighborsMatchBruteForce },
   { "LocalRingIsDelaunay", LocalRingIsDelaunay },
   { "SphereSpectrum", SphereSpectrum },

@@ -6,6 +6,7 @@
 // (computed here: products of sines and cosines, zeros of Bessel functions found by bisection),
 // second-order convergence, filtering on a volume, and the volume defects PrepareMesh handles.
 #include "Basis.h"
+#include "BasisChecks.h"
 #include "Checks.h"
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
@@ -435,6 +436,35 @@ void FilterNoisyFieldOnBall()
 }
 
 //------------------------------------------------------------------------------
+// Zero modes by construction in volumes: two tetrahedral boxes apart with natural conditions,
+// lumped and consistent mass: two eigenvalues exactly 0, the constants of the boxes, the other
+// harmonics M-orthogonal to them (BasisChecks.h). With Dirichlet conditions there is no zero
+// mode: every eigenvalue is positive.
+void ZeroModesOfVolumes()
+{
+  const TriangleMesh a = TetrahedralBox(1.0, 0.8, 0.6, 5, 4, 3);
+  const TriangleMesh b = TetrahedralBox(0.5, 0.5, 0.5, 3, 3, 3);
+  TriangleMesh boxes;
+  boxes.Vertices.resize(a.Vertices.rows() + b.Vertices.rows(), 3);
+  boxes.Vertices << a.Vertices, (b.Vertices.array() + 3.0).matrix();
+  boxes.Tets.resize(a.Tets.rows() + b.Tets.rows(), 4);
+  boxes.Tets << a.Tets, (b.Tets.array() + static_cast<int>(a.Vertices.rows())).matrix();
+  for (const MassKind mass : { MassKind::Lumped, MassKind::Consistent })
+  {
+    BasisOptions options;
+    options.NumberOfHarmonics = 20;
+    options.Operators.Mass = mass;
+    const BasisResult basis = ComputeBasis(boxes, options);
+    CheckZeroModes(
+      basis, 2, mass == MassKind::Lumped ? "two boxes, lumped: " : "two boxes, consistent: ");
+  }
+  const BasisResult dirichlet = Solve(boxes, 10, BoundaryCondition::Dirichlet);
+  Check(dirichlet.Pairs.Eigenvalues[0] > 1.0,
+    "two boxes, Dirichlet: no zero mode, lambda_0 > 1 (" +
+      std::to_string(dirichlet.Pairs.Eigenvalues[0]) + ")");
+}
+
+//------------------------------------------------------------------------------
 // Volume defects: zero-volume tetrahedra and duplicates are left out with a warning; a mesh
 // mixing triangles and tetrahedra is refused; the intrinsic Delaunay Laplacian falls back to
 // the cotangent one for tetrahedra, with a warning.
@@ -506,6 +536,7 @@ void VolumeDefects()
 }
 
 const Case Cases[] = {
+  { "ZeroModesOfVolumes", ZeroModesOfVolumes },
   { "StiffnessFromDihedralAngles", StiffnessFromDihedralAngles },
   { "TetrahedralOperators", TetrahedralOperators },
   { "UnitCube", UnitCube },

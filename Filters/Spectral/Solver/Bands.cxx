@@ -53,6 +53,7 @@ int PairsPerBand(int m, int bandSize, Eigen::Index n)
 
 namespace
 {
+
 /// Eigenpairs accepted so far, ascending. The vectors of the first Retired values have been let
 /// go (verified, KeepEigenvectors false); column j of Vectors is the vector of value Retired + j.
 struct Accepted
@@ -60,6 +61,11 @@ struct Accepted
   DenseMatrix Vectors;
   std::vector<double> Values;
   int Retired = 0;
+  /// The first Fixed pairs are the null vectors of MassMatrix::Deflation, known in advance: no
+  /// merge changes them. Their values are the Rayleigh quotients of the null vectors (0 up to
+  /// the rounding of L), where every inertia count of L as rounded sees them, until Run returns
+  /// them as exactly 0.
+  int Fixed = 0;
   /// Between the last retired value and the first kept one; -infinity while none is retired.
   double RetiredBelow = -std::numeric_limits<double>::infinity();
 
@@ -87,7 +93,7 @@ void Merge(Accepted& accepted,
   const MassMatrix& M,
   Workspace& work)
 {
-  const int first = std::max(accepted.CountBelow(windowLow), accepted.Retired);
+  const int first = std::max({ accepted.CountBelow(windowLow), accepted.Retired, accepted.Fixed });
   const int fromAccepted = accepted.Count() - first;
   const Eigen::Index p = fromAccepted + values.size();
   if (p == 0)
@@ -159,6 +165,7 @@ public:
   EigenResult Run();
 
 private:
+  void AcceptNullVectors();
   Step ProveTop();
   bool FactorAtShift();
   bool RunBand(Band& band);
@@ -234,6 +241,10 @@ BandLoop::BandLoop(const SparseMatrix& L,
   const int columns = this->Count + 2 * this->Nev;
   this->AcceptedPairs.Vectors.resize(
     this->N, this->Options.KeepEigenvectors ? columns : std::min(columns, 3 * this->Nev));
+  if (this->Offset == 0 && M.Deflation && M.Deflation->cols() > 0)
+  {
+    this->AcceptNullVectors();
+  }
   if (this->Offset > 0)
   {
     // What lies below StartValue is proven by the caller; the bands start above it, from the
@@ -242,6 +253,23 @@ BandLoop::BandLoop(const SparseMatrix& L,
     this->MeanGap = options.StartValue / this->Offset;
     this->Sigma = options.StartValue + 0.375 * this->Nev * this->MeanGap;
   }
+}
+
+//------------------------------------------------------------------------------
+// The null vectors of M.Deflation become the first accepted pairs (Accepted::Fixed), at their
+// Rayleigh quotients z^T L z.
+void BandLoop::AcceptNullVectors()
+{
+  const DenseMatrix& Z = *this->M.Deflation;
+  const Eigen::Index k = std::min<Eigen::Index>(Z.cols(), this->Count);
+  const Vector quotients = (Z.leftCols(k).transpose() * (this->L * Z.leftCols(k))).diagonal();
+  for (Eigen::Index j = 0; j < k; ++j)
+  {
+    this->AcceptedPairs.Vectors.col(j) = Z.col(j);
+    this->AcceptedPairs.Values.push_back(quotients[j]);
+  }
+  std::sort(this->AcceptedPairs.Values.begin(), this->AcceptedPairs.Values.end());
+  this->AcceptedPairs.Fixed = static_cast<int>(k);
 }
 
 //------------------------------------------------------------------------------
@@ -270,6 +298,7 @@ EigenResult BandLoop::Run()
   }
   this->Result.Eigenvalues =
     Eigen::Map<const Vector>(this->AcceptedPairs.Values.data(), this->Count);
+  this->Result.Eigenvalues.head(this->AcceptedPairs.Fixed).setZero();
   if (!this->Options.KeepEigenvectors)
   {
     this->Retire(this->Count);
@@ -398,8 +427,7 @@ bool BandLoop::RunBand(Band& band)
   };
   if (this->Options.Method == LanczosMethod::Spectra)
   {
-    band =
-      RunSpectraBand(this->Factor, this->M.Matrix, request, this->Options, this->Watch, this->Work);
+    band = RunSpectraBand(this->Factor, this->M, request, this->Options, this->Watch, this->Work);
     this->Result.Seconds.Solve += SecondsSince(this->Start);
     return true;
   }
@@ -426,7 +454,12 @@ bool BandLoop::RunBand(Band& band)
   }
   catch (const ShiftTooClose& moved)
   {
-    this->Sigma = moved.Suggested;
+    // Half a mean gap away from that eigenvalue, on the shift's side; where that was tried and
+    // met another eigenvalue (two of them half a gap apart made the shift go back and forth),
+    // other fractions of the gap.
+    static constexpr double Fractions[] = { 0.5, 0.3, 0.7, 0.2 };
+    const double fraction = Fractions[this->Gaps % 4];
+    this->Sigma = moved.Eigenvalue + moved.Side * fraction * this->MeanGap;
     this->CountFailure("no shift near " + Str(this->Sigma) + " is far enough from an eigenvalue");
     return false;
   }
@@ -507,10 +540,16 @@ void BandLoop::AcceptBand(const Band& band)
 // eigenvalues below the shift: roll back.
 bool BandLoop::InertiaAgrees(const Vector& trusted, double low)
 {
-  int belowShift = this->Offset + this->AcceptedPairs.CountBelow(low);
+  const Accepted& accepted = this->AcceptedPairs;
+  int belowShift = this->Offset + accepted.CountBelow(low);
   for (Eigen::Index i = 0; i < trusted.size(); ++i)
   {
     belowShift += (trusted[i] < this->Sigma) ? 1 : 0;
+  }
+  // The known null pairs are no band's: they count wherever they lie below the shift.
+  for (int j = 0; j < accepted.Fixed; ++j)
+  {
+    belowShift += (accepted.Values[j] >= low && accepted.Values[j] < this->Sigma) ? 1 : 0;
   }
   if (belowShift != this->Factor.NegativePivots())
   {
@@ -559,7 +598,8 @@ void BandLoop::RollBack(const std::string& what)
   {
     throw SolverFailure(what, this->AcceptedPairs.CountBelow(this->Proven));
   }
-  this->AcceptedPairs.Values.resize(this->AcceptedPairs.CountBelow(this->Proven));
+  this->AcceptedPairs.Values.resize(
+    std::max(this->AcceptedPairs.Fixed, this->AcceptedPairs.CountBelow(this->Proven)));
   this->Complete = this->Proven;
   this->Sigma = std::isfinite(this->Proven) ? this->Proven + 0.5 * this->Radius : this->FirstShift;
 }

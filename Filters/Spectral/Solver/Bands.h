@@ -28,6 +28,11 @@
  * StartValue by 3/8 of a band's width (the density from Weyl's law, StartIndex / StartValue),
  * and a band's pairs below StartValue are not trusted.
  *
+ * Known null vectors (MassMatrix::Deflation, EigenOptions::ConstantNullSpace): the bands work in
+ * their M-orthogonal complement. With StartIndex 0 they are the first accepted pairs, which no
+ * merge changes, counted by the inertia proofs at their Rayleigh quotient (0 up to the rounding
+ * of L: where an inertia count of L as rounded sees them) and returned with eigenvalue 0.
+ *
  * Without the eigenvectors (EigenOptions::KeepEigenvectors false): once more than two bands'
  * worth of accepted vectors are kept, those one band below what is proven are verified and
  * dropped (retired), at a gap of the spectrum, never inside a multiple eigenvalue. A later band

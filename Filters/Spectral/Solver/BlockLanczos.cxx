@@ -27,7 +27,7 @@ namespace
  * Op = (L - sigma M)^-1 M dwarf the rest of the band; rounding then costs every other pair of
  * the band up to an order of magnitude of residual. That eigenvalue dominates the first few
  * Lanczos blocks, so the largest Ritz value of their projection T finds it early.
- * \throws ShiftTooClose with a shift half a mean gap away from it.
+ * \throws ShiftTooClose with the eigenvalue sigma + 1 / theta it found.
  */
 void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
 {
@@ -39,7 +39,7 @@ void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
   const double nearest = 1.0 / dominant;
   if (std::abs(nearest) < 0.025 * meanGap)
   {
-    throw ShiftTooClose{ sigma + nearest - std::copysign(0.5 * meanGap, nearest) };
+    throw ShiftTooClose{ sigma + nearest, std::copysign(1.0, -nearest) };
   }
 }
 
@@ -208,6 +208,7 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
       this->W(i, j) = uniform(this->Generator);
     }
   }
+  M.Deflate(this->W);
   Orthonormalize(this->W, M, this->V.leftCols(0), 0.0, this->Generator);
   this->V.leftCols(this->B) = this->W;
 }
@@ -265,6 +266,9 @@ void BlockLanczosBand::ApplyOperator()
   const auto block = this->V.middleCols(this->Applied, this->B);
   this->W = this->M.Identity ? this->Factor.SolveBlock(block)
                              : this->Factor.SolveBlock(this->M.Matrix * block);
+  // Op keeps the complement of the null vectors in exact arithmetic; rounding would let their
+  // direction grow back.
+  this->M.Deflate(this->W);
   this->Stats.OperatorApplications += this->B;
   this->Stats.Seconds.Solve += SecondsSince(this->Start);
 }
@@ -543,6 +547,7 @@ void BlockLanczosBand::Refine(Eigen::Ref<DenseMatrix> X,
   this->Stats.Seconds.RayleighRitz += SecondsSince(this->Start);
   this->Start = Clock::now();
   X -= this->Factor.SolveBlock(AX - this->MassX(X, MX) * shifted.asDiagonal());
+  this->M.Deflate(X);
   this->Stats.OperatorApplications += X.cols();
   this->Stats.Seconds.Solve += SecondsSince(this->Start);
   this->Start = Clock::now();

@@ -24,10 +24,13 @@ namespace spectral
 {
 namespace detail
 {
-/// Thrown by a band whose shift lies too close to an eigenvalue; holds a better shift.
+/// Thrown by a band whose shift lies too close to an eigenvalue: where that eigenvalue lies, and
+/// on which side of it the shift was.
 struct ShiftTooClose
 {
-  double Suggested;
+  double Eigenvalue;
+  /// +1 where the shift lay above the eigenvalue, -1 below.
+  double Side;
 };
 
 /**

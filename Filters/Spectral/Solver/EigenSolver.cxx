@@ -262,6 +262,65 @@ EigenResult DenseEigenpairs(const SparseMatrix& L,
   return solves[best];
 }
 
+/// The constant null vector of L (EigenOptions::ConstantNullSpace), M-normalized: 1 / sqrt(1^T M
+/// 1).
+Vector ConstantNullVector(const SparseMatrix& M)
+{
+  return Vector::Constant(M.rows(), 1.0 / std::sqrt(M.sum()));
+}
+
+/**
+ * DenseEigenpairs with the constant null vector z deflated: the m smallest pairs, (0, z) first,
+ * then the m - 1 smallest of the pencil restricted to the M-orthogonal complement of z.
+ *
+ * The complement {h : w^T h = 0}, w = M z, has the basis C of the columns e_i - (w_i / w_p) e_p,
+ * i != p, with p the point of smallest L_pp / w_p (a large mass and small weights, the most
+ * regular point): C^T L C and C^T M C add to each row i w_i / w_p times row p, so the rows of
+ * tiny mass and huge weights (a scan's near-coincident points, cotangents up to 1e8) stay as
+ * graded as in L and M and no huge weight spreads to the others, and the dense solve (with its
+ * fallbacks for graded pencils) keeps its accuracy on them. (A basis of eigenvectors would mix
+ * in the top of the spectrum, 1e17 times lambda_1 on such debris, and its rounding.) The pairs
+ * are h = C x; their residuals in (L, M) lie along M z, of the size of the rounding of L's row
+ * sums (L z = 0 but for it), which the final check measures.
+ */
+EigenResult DeflatedDenseEigenpairs(const SparseMatrix& L,
+  const SparseMatrix& M,
+  int m,
+  const EigenOptions& options)
+{
+  const Eigen::Index n = L.rows();
+  const Vector z = ConstantNullVector(M);
+  EigenResult result;
+  result.Eigenvalues = Vector::Zero(1);
+  result.Eigenvectors = z;
+  if (m == 1)
+  {
+    return result;
+  }
+  const Vector w = M * z;
+  Eigen::Index p = 0;
+  (L.diagonal().array() / w.array()).minCoeff(&p);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index i = 0, column = 0; i < n; ++i)
+  {
+    if (i != p)
+    {
+      entries.emplace_back(i, column, 1.0);
+      entries.emplace_back(p, column++, -w[i] / w[p]);
+    }
+  }
+  SparseMatrix C(n, n - 1);
+  C.setFromTriplets(entries.begin(), entries.end());
+  const SparseMatrix Lc = SparseMatrix(C.transpose() * L * C).pruned();
+  const SparseMatrix Mc = SparseMatrix(C.transpose() * M * C).pruned();
+  const EigenResult complement = DenseEigenpairs(Lc, Mc, 0, m - 1, options.BackwardErrorTolerance);
+  result.Eigenvalues.conservativeResize(m);
+  result.Eigenvalues.tail(m - 1) = complement.Eigenvalues;
+  result.Eigenvectors.conservativeResize(Eigen::NoChange, m);
+  result.Eigenvectors.rightCols(m - 1) = C * complement.Eigenvectors;
+  return result;
+}
+
 /// The dense path: problems of at most DenseThreshold unknowns, or with m > n / 3.
 EigenResult SolveDensely(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -277,7 +336,9 @@ EigenResult SolveDensely(const SparseMatrix& L,
   }
   monitor.ThrowIfCancelled();
   const Clock::time_point start = Clock::now();
-  EigenResult result = DenseEigenpairs(L, M, options.StartIndex, m, options.BackwardErrorTolerance);
+  EigenResult result = options.ConstantNullSpace && options.StartIndex == 0
+    ? DeflatedDenseEigenpairs(L, M, m, options)
+    : DenseEigenpairs(L, M, options.StartIndex, m, options.BackwardErrorTolerance);
   result.Seconds.RayleighRitz = SecondsSince(start);
   return result;
 }
@@ -290,13 +351,21 @@ EigenResult SolveByBands(const SparseMatrix& L,
 {
   const Eigen::Index n = L.rows();
   const double area = M.sum();
+  // The null vector in the iteration's pencil (EigenOptions::ConstantNullSpace): the bands work
+  // in its M-orthogonal complement.
+  DenseMatrix nulls;
+  if (options.ConstantNullSpace)
+  {
+    nulls = ConstantNullVector(M);
+  }
+  const DenseMatrix* deflation = options.ConstantNullSpace ? &nulls : nullptr;
   if (!IsPositiveDiagonal(M))
   {
     const detail::RetirePairs retire =
       [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
     { detail::CheckSomeResiduals(L, M, options, values, vectors, first, result); };
     return detail::BandEigenpairs(
-      L, detail::MassMatrix{ M, false }, area, options, monitor, retire);
+      L, detail::MassMatrix{ M, false, deflation }, area, options, monitor, retire);
   }
   // Q h = lambda D h with a diagonal D is the standard problem S y = lambda y with
   // S = D^-1/2 Q D^-1/2 and y = D^1/2 h: the same eigenvalues, the same inertia of every
@@ -304,6 +373,11 @@ EigenResult SolveByBands(const SparseMatrix& L,
   // Euclidean one, which saves a sparse product with D for every product of the iteration.
   const Vector scaling = M.diagonal().cwiseSqrt().cwiseInverse();
   const SparseMatrix S = scaling.asDiagonal() * L * scaling.asDiagonal();
+  if (deflation)
+  {
+    // y = D^1/2 h: the constant becomes D^1/2 1 / sqrt(1^T D 1).
+    nulls = M.diagonal().cwiseSqrt() / std::sqrt(area);
+  }
   SparseMatrix identity(n, n);
   identity.setIdentity();
   // Pairs let go without options.KeepEigenvectors are verified as harmonics h = D^-1/2 y, on
@@ -315,8 +389,8 @@ EigenResult SolveByBands(const SparseMatrix& L,
     ScaleRows(harmonics, scaling);
     detail::CheckSomeResiduals(L, M, options, values, harmonics, first, result);
   };
-  EigenResult result =
-    detail::BandEigenpairs(S, detail::MassMatrix{ identity, true }, area, options, monitor, retire);
+  EigenResult result = detail::BandEigenpairs(
+    S, detail::MassMatrix{ identity, true, deflation }, area, options, monitor, retire);
   ScaleRows(result.Eigenvectors, scaling);
   return result;
 }
@@ -351,6 +425,15 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
   const bool dense = n <= options.DenseThreshold || 3 * wanted > n;
   EigenResult result =
     dense ? SolveDensely(L, M, options, monitor) : SolveByBands(L, M, options, monitor);
+  if (options.ConstantNullSpace && options.StartIndex == 0)
+  {
+    // The null pair exactly, whatever the rounding of a scaling left in its vector.
+    result.Eigenvalues[0] = 0.0;
+    if (result.Eigenvectors.cols() > 0)
+    {
+      result.Eigenvectors.col(0) = ConstantNullVector(M);
+    }
+  }
   if (dense || options.KeepEigenvectors)
   {
     NormalizeSigns(result.Eigenvectors);

@@ -93,6 +93,15 @@ struct EigenOptions
    */
   int StartIndex = 0;
   double StartValue = 0.0;
+  /**
+   * Whether the null space of L is the constants: a connected mesh with natural (Neumann)
+   * conditions, whose rows of L sum to zero. The constant harmonic 1 / sqrt(1^T M 1) is then
+   * known: with StartIndex 0 it is returned as the first pair with eigenvalue exactly 0, and the
+   * other pairs are computed in its M-orthogonal complement (deflation), so that neither the
+   * rounding of L (cotangents of 1e8 on a scan's near-coincident points) nor the machine's
+   * floating-point kernels move the zero eigenvalue. False computes every pair.
+   */
+  bool ConstantNullSpace = false;
 };
 
 /// Seconds spent in each stage of SmallestEigenpairs.
@@ -141,7 +150,8 @@ struct EigenResult
  * \param options m, band size, tolerances, where the pairs start, whether to keep the vectors.
  * \param monitor progress in [0, 1] and cancellation, polled inside every operator application.
  * \return Eigenvalues ascending, eigenvectors M-orthonormal with a deterministic sign (none
- *         without options.KeepEigenvectors).
+ *         without options.KeepEigenvectors); with options.ConstantNullSpace and StartIndex 0,
+ *         the first pair is (0, 1 / sqrt(1^T M 1)) exactly and the others are M-orthogonal to it.
  * \throws InvalidInput if the sizes disagree or StartIndex + m is not in [1, n].
  * \throws SolverFailure if a band does not converge, a factorization fails, an inertia count
  *         disagrees with the eigenvalues found, or a pair has both a relative residual above

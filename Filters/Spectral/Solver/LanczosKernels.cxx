@@ -28,8 +28,8 @@ void MultiplyInto(Eigen::Ref<DenseMatrix> out,
 }
 
 /**
- * Replace the columns `deficient` of W by random vectors M-orthogonal to Basis and to W (two
- * passes of classical Gram-Schmidt), M-normalized.
+ * Replace the columns `deficient` of W by random vectors M-orthogonal to Basis, to W and to the
+ * null vectors of M.Deflation (two passes of classical Gram-Schmidt), M-normalized.
  */
 void ReplaceDeficient(DenseMatrix& W,
   const MassMatrix& M,
@@ -47,6 +47,8 @@ void ReplaceDeficient(DenseMatrix& W,
     }
     for (int again = 0; again < 2; ++again)
     {
+      Eigen::Map<DenseMatrix> column(v.data(), v.size(), 1);
+      M.Deflate(column);
       v -= Basis * (Basis.transpose() * (M.Matrix * v));
       v -= W * (W.transpose() * (M.Matrix * v));
     }

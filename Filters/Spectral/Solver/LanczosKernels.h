@@ -44,8 +44,8 @@ Vector MassNorms(const DenseMatrix& W, const MassMatrix& M);
 /**
  * M-orthonormalize the columns of W (two passes of SVQB: eigen-decomposition of the Gram matrix)
  * and return R with W_in = W_out R. Directions whose norm fell below `floor` (the block is nearly
- * inside the span of Basis) are replaced by random vectors M-orthogonal to Basis and to the other
- * columns; their rows of R are zero.
+ * inside the span of Basis) are replaced by random vectors M-orthogonal to Basis, to the other
+ * columns and to the null vectors of M.Deflation; their rows of R are zero.
  * \param gram W^T M W if the caller has it, else empty.
  * \param out where the result goes: W itself (null), or other columns (then W is left as
  *        scratch). With the identity mass the second pass's Gram matrix is summed during the

@@ -3,10 +3,12 @@
 /**
  * @file MassMatrix.h
  * @brief The mass matrix of the pencil (L, M) as the band iterations see it: a sparse matrix,
- *        or the identity once SmallestEigenpairs has scaled a diagonal (lumped) mass away.
+ *        or the identity once SmallestEigenpairs has scaled a diagonal (lumped) mass away; and
+ *        the known null vectors the iterations work M-orthogonally to (deflation).
  *
  * Used by Bands, BlockLanczos, SpectraBand and LanczosKernels; both cases are tested by
- * Testing/Core/TestEigenSolver.cxx (SphereSpectrum: lumped; SphereConsistentMass: consistent).
+ * Testing/Core/TestEigenSolver.cxx (SphereSpectrum: lumped; SphereConsistentMass: consistent;
+ * ExactZeroModes: deflation).
  */
 #ifndef spectral_MassMatrix_h
 #define spectral_MassMatrix_h
@@ -27,6 +29,26 @@ struct MassMatrix
   /// n by n; the sparse identity when Identity is set.
   const SparseMatrix& Matrix;
   bool Identity;
+  /**
+   * Null vectors of L known in advance (EigenOptions::ConstantNullSpace), M-orthonormal, n by k;
+   * null for none. The iterations keep every vector they build M-orthogonal to them (Deflate),
+   * so that they look for the other eigenpairs only, in the complement of the null space.
+   */
+  const DenseMatrix* Deflation = nullptr;
+
+  /// W -= Z (Z^T M W) for the null vectors Z (nothing without them).
+  void Deflate(Eigen::Ref<DenseMatrix> W) const
+  {
+    if (!this->Deflation || this->Deflation->cols() == 0)
+    {
+      return;
+    }
+    const DenseMatrix& Z = *this->Deflation;
+    const DenseMatrix coefficients = this->Identity
+      ? DenseMatrix(Z.transpose() * W)
+      : DenseMatrix((this->Matrix * Z).transpose() * W);
+    W -= Z * coefficients;
+  }
 
   /// M W in `out`; W itself (no copy) for the identity.
   const DenseMatrix& Times(const DenseMatrix& W, DenseMatrix& out) const

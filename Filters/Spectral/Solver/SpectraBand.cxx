@@ -16,14 +16,19 @@ namespace detail
 {
 namespace
 {
-/// Spectra operation y = (L - sigma M)^-1 x on a ShiftedFactor; polls for cancellation.
+/// Spectra operation y = (L - sigma M)^-1 x on a ShiftedFactor, M-orthogonal to the null vectors
+/// of M.Deflation; polls for cancellation.
 class ShiftInvertOp
 {
 public:
   using Scalar = double;
 
-  ShiftInvertOp(const ShiftedFactor& factor, const Monitor& monitor, Eigen::Index n)
+  ShiftInvertOp(const ShiftedFactor& factor,
+    const MassMatrix& M,
+    const Monitor& monitor,
+    Eigen::Index n)
     : Factor(factor)
+    , Mass(M)
     , Watch(monitor)
     , Size(n)
     , In(n, 1)
@@ -37,11 +42,14 @@ public:
   {
     this->Watch.ThrowIfCancelled();
     this->In = Eigen::Map<const Vector>(xIn, this->Size);
-    Eigen::Map<Vector>(yOut, this->Size) = this->Factor.SolveBlock(this->In);
+    this->In = this->Factor.SolveBlock(this->In);
+    this->Mass.Deflate(this->In);
+    Eigen::Map<Vector>(yOut, this->Size) = this->In.col(0);
   }
 
 private:
   const ShiftedFactor& Factor;
+  const MassMatrix& Mass;
   const Monitor& Watch;
   Eigen::Index Size;
   mutable DenseMatrix In;
@@ -72,21 +80,23 @@ private:
 using ShiftInvertSolver =
   Spectra::SymGEigsShiftSolver<ShiftInvertOp, MassOp, Spectra::GEigsMode::ShiftInvert>;
 
-/// Start attempt 0 from Spectra's default vector, later attempts from other random vectors.
-void StartSolver(ShiftInvertSolver& eigs, Eigen::Index n, int attempt)
+/// Start attempt 0 from Spectra's default vector, later attempts (and every attempt with null
+/// vectors, which the start must be M-orthogonal to) from other random vectors.
+void StartSolver(ShiftInvertSolver& eigs, const MassMatrix& M, Eigen::Index n, int attempt)
 {
-  if (attempt == 0)
+  if (attempt == 0 && !M.Deflation)
   {
     eigs.init();
     return;
   }
   std::mt19937 generator(12345u + static_cast<unsigned>(attempt));
   std::uniform_real_distribution<double> uniform(-0.5, 0.5);
-  Vector start(n);
+  DenseMatrix start(n, 1);
   for (Eigen::Index i = 0; i < n; ++i)
   {
-    start[i] = uniform(generator);
+    start(i, 0) = uniform(generator);
   }
+  M.Deflate(start);
   eigs.init(start.data());
 }
 
@@ -114,20 +124,20 @@ Band SortedPairs(const ShiftInvertSolver& eigs, Eigen::Index n, Workspace& work)
 
 //------------------------------------------------------------------------------
 Band RunSpectraBand(const ShiftedFactor& factor,
-  const SparseMatrix& M,
+  const MassMatrix& M,
   const BandRequest& request,
   const EigenOptions& options,
   const Monitor& monitor,
   Workspace& work)
 {
-  const Eigen::Index n = M.rows();
+  const Eigen::Index n = M.Matrix.rows();
   const int nev = request.Pairs;
   const int ncv = static_cast<int>(
     std::min<Eigen::Index>(n, std::max(2 * nev + 1, nev + 20) + request.Attempt * nev));
-  ShiftInvertOp op(factor, monitor, n);
-  MassOp mass(M);
+  ShiftInvertOp op(factor, M, monitor, n);
+  MassOp mass(M.Matrix);
   ShiftInvertSolver eigs(op, mass, nev, ncv, request.Sigma);
-  StartSolver(eigs, n, request.Attempt);
+  StartSolver(eigs, M, n, request.Attempt);
   const Eigen::Index converged = eigs.compute(Spectra::SortRule::LargestMagn,
     options.MaxIterations,
     options.Tolerance,

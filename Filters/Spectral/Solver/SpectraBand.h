@@ -16,6 +16,7 @@
 #include "Solver/BandWorkspace.h"
 #include "Solver/EigenSolver.h"
 #include "Solver/Factorization.h"
+#include "Solver/MassMatrix.h"
 
 namespace spectral
 {
@@ -25,13 +26,14 @@ namespace detail
  * The request.Pairs eigenpairs nearest request.Sigma with Spectra's shift-invert Lanczos in the
  * M inner product, on `factor` (already factored at the shift). Attempt 0 starts from Spectra's
  * default vector, later attempts from other random vectors and with a larger subspace.
- * \param M n by n, the mass matrix of the pencil (the identity after a diagonal mass is scaled).
+ * \param M the mass matrix of the pencil (the identity after a diagonal mass is scaled) and the
+ *        null vectors the iteration stays M-orthogonal to.
  * \param monitor polled for cancellation before every operator application.
  * \param work the band's vectors, ascending, go into the first columns of work.Basis.
  * \throws SolverFailure if the band does not converge.
  */
 Band RunSpectraBand(const ShiftedFactor& factor,
-  const SparseMatrix& M,
+  const MassMatrix& M,
   const BandRequest& request,
   const EigenOptions& options,
   const Monitor& monitor,
