@@ -1227,6 +1227,13 @@ Result Solve(vtkMultiProcessController* controller,
   // largest components' first; SLEPc's pairs are kept in their D-orthogonal complement.
   const Components components = LabelComponents(comm, mesh, numbering, lumped.Object);
   const int zeros = std::min(m, components.Count);
+  if (components.Count > 1 && m <= components.Count)
+  {
+    warn("NumberOfHarmonics " + std::to_string(m) + " does not exceed the " +
+      std::to_string(components.Count) +
+      " connected components: every harmonic is constant on one component (eigenvalue 0), so "
+      "filtering can only move whole components.");
+  }
 
   // 3. The interval (unless the constants are all the harmonics asked for): Weyl's law for
   // its upper end, widened until the inertia counts m (the zero eigenvalues among them; they
@@ -1485,6 +1492,32 @@ Result Solve(vtkMultiProcessController* controller,
     {
       rows.Duplicates->SetValue(prepared.InputPointIds[i], vtkDataSetAttributes::DUPLICATEPOINT);
     }
+  }
+  // Components that no harmonic represents (more components than m): zero mass as well, as in
+  // the built-in solver (Basis.cxx, LeaveOutUnrepresented), so that the filters pass their
+  // points through unchanged.
+  if (zeros < components.Count)
+  {
+    std::vector<char> represented(static_cast<std::size_t>(components.Count), 0);
+    for (int r = 0; r < zeros; ++r)
+    {
+      represented[components.Order[r]] = 1;
+    }
+    long long left = 0;
+    for (int j = 0; j < components.Count; ++j)
+    {
+      left += represented[j] ? 0 : components.Points[j];
+    }
+    for (Eigen::Index i = 0; i < used; ++i)
+    {
+      if (!represented[components.Label[i]])
+      {
+        rows.Mass->SetValue(prepared.InputPointIds[i], 0.0);
+      }
+    }
+    warn(std::to_string(left) + " points of components that none of the " + std::to_string(m) +
+      " harmonics represents have zero harmonics and mass: the filters pass them through "
+      "unchanged.");
   }
   result.UpperEnd = upper / (s * s);
   progress(1.0);
