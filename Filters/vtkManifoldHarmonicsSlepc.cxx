@@ -424,31 +424,9 @@ struct Components
   std::vector<int> Order;
 };
 
-int FindRoot(std::vector<int>& parent, int i)
-{
-  while (parent[i] != i)
-  {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-// Unites the sets of a and b under the smaller root (so that the roots are the sets' smallest
-// members, whatever the order of the unions).
-void Unite(std::vector<int>& parent, int a, int b)
-{
-  a = FindRoot(parent, a);
-  b = FindRoot(parent, b);
-  if (a != b)
-  {
-    parent[std::max(a, b)] = std::min(a, b);
-  }
-}
-
 /**
  * The connected components of the distributed mesh, without gathering it (collective). Each
- * process labels the components of its own cells (union-find over their points). Only border
+ * process labels the components of its own cells (spectral::LabelComponents). Only border
  * points (BorderPoints) can be held by another piece, or merged with a coincident copy in the
  * same piece, so they are the only links between local components: every process receives the
  * pairs (global point number, local component) of every process's border points (O(seam), as
@@ -457,7 +435,7 @@ void Unite(std::vector<int>& parent, int a, int b)
  * rank order. Then the components' masses (from `lumped`, the distributed lumped mass) and
  * point counts are summed over the owned points of all processes.
  */
-Components LabelComponents(MPI_Comm comm,
+Components DistributedComponents(MPI_Comm comm,
   const spectral::TriangleMesh& mesh,
   const Numbering& numbering,
   Vec lumped)
@@ -469,26 +447,8 @@ Components LabelComponents(MPI_Comm comm,
   const int n = static_cast<int>(mesh.Vertices.rows());
 
   // Local components, numbered by their first point.
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  const bool volume = mesh.IsVolume();
-  const Eigen::Index cells = volume ? mesh.Tets.rows() : mesh.Faces.rows();
-  const int corners = volume ? 4 : 3;
-  for (Eigen::Index c = 0; c < cells; ++c)
-  {
-    for (int j = 1; j < corners; ++j)
-    {
-      Unite(parent, volume ? mesh.Tets(c, 0) : mesh.Faces(c, 0),
-        volume ? mesh.Tets(c, j) : mesh.Faces(c, j));
-    }
-  }
-  std::vector<int> local(static_cast<std::size_t>(n), -1);
-  int localCount = 0;
-  for (int i = 0; i < n; ++i)
-  {
-    const int root = FindRoot(parent, i);
-    local[i] = root == i ? localCount++ : local[root];
-  }
+  const spectral::ComponentLabels local = spectral::LabelComponents(mesh);
+  const int localCount = local.Count;
   int offset = 0;
   int nodes = 0;
   MPI_Exscan(&localCount, &offset, 1, MPI_INT, MPI_SUM, comm);
@@ -505,7 +465,7 @@ Components LabelComponents(MPI_Comm comm,
   for (const int point : border)
   {
     links.push_back(numbering.Global[point]);
-    links.push_back(offset + local[point]);
+    links.push_back(offset + local.Label[point]);
   }
   const int count = static_cast<int>(links.size());
   std::vector<int> counts(size);
@@ -521,33 +481,32 @@ Components LabelComponents(MPI_Comm comm,
     displacements.data(),
     MPI_LONG_LONG,
     comm);
+  // The local components (nodes) joined by a point they share: the graph of those links,
+  // labelled in the order of the nodes, the same on every process.
   std::vector<std::pair<long long, int>> byPoint(all.size() / 2);
   for (std::size_t l = 0; l < byPoint.size(); ++l)
   {
     byPoint[l] = { all[2 * l], static_cast<int>(all[2 * l + 1]) };
   }
   std::sort(byPoint.begin(), byPoint.end());
-  std::vector<int> global(static_cast<std::size_t>(nodes));
-  std::iota(global.begin(), global.end(), 0);
+  std::vector<Eigen::Triplet<double>> joined;
   for (std::size_t l = 1; l < byPoint.size(); ++l)
   {
     if (byPoint[l].first == byPoint[l - 1].first)
     {
-      Unite(global, byPoint[l].second, byPoint[l - 1].second);
+      joined.emplace_back(byPoint[l].second, byPoint[l - 1].second, 1.0);
+      joined.emplace_back(byPoint[l - 1].second, byPoint[l].second, 1.0);
     }
   }
-  // The roots are the smallest nodes of their components: number them in ascending order.
+  spectral::SparseMatrix graph(nodes, nodes);
+  graph.setFromTriplets(joined.begin(), joined.end());
+  const spectral::ComponentLabels global = spectral::LabelComponents(graph);
   Components components;
-  std::vector<int> id(static_cast<std::size_t>(nodes), -1);
-  for (int node = 0; node < nodes; ++node)
-  {
-    const int root = FindRoot(global, node);
-    id[node] = root == node ? components.Count++ : id[root];
-  }
+  components.Count = global.Count;
   components.Label.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
   {
-    components.Label[i] = id[offset + local[i]];
+    components.Label[i] = global.Label[offset + local.Label[i]];
   }
 
   // Masses and point counts over the owned points of all processes.
@@ -1225,7 +1184,7 @@ Result Solve(vtkMultiProcessController* controller,
 
   // The connected components: each one's constant harmonic is written with eigenvalue 0, the
   // largest components' first; SLEPc's pairs are kept in their D-orthogonal complement.
-  const Components components = LabelComponents(comm, mesh, numbering, lumped.Object);
+  const Components components = DistributedComponents(comm, mesh, numbering, lumped.Object);
   const int zeros = std::min(m, components.Count);
   if (components.Count > 1 && m <= components.Count)
   {

@@ -23,7 +23,7 @@
  *    of spectral::UnitScale
  *    of the global diameter, and adds them into distributed PETSc AIJ matrices by global number
  *    (MatSetValues ADD_VALUES; PETSc sends the rows of other processes at assembly).
- * 3. Zero modes, then the eigensolve. The connected components (LabelComponents: each
+ * 3. Zero modes, then the eigensolve. The connected components (DistributedComponents: each
  *    process's own, joined across processes through the border points' global numbers) give
  *    the first harmonics: the constant 1/sqrt(mass of the component) on each, the largest
  *    components (most points) first, with eigenvalue exactly 0 (Q 1 = 0). Spectrum slicing
