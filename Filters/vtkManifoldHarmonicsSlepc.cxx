@@ -27,6 +27,7 @@
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace
@@ -37,6 +38,10 @@ constexpr int SliceHarmonics = 200;
 // Eigenvectors whose D-products a process keeps at once (owned rows by GramColumns) to take
 // their Gram matrix against the written rows: memory against passes over those rows.
 constexpr int GramColumns = 32;
+// The share of an eigenvector's squared D-norm below which its part on a connected component is
+// round-off of the Krylov vectors and set to zero (Constants::Deflate): a part of D-norm below
+// 1e-8, the pair tolerance (Verification.h), changes none of the pair checks.
+constexpr double NegligibleShare = 1e-16;
 
 //------------------------------------------------------------------------------
 // PETSc errors: the first message of an error (where it arose), recorded by our handler, and
@@ -397,6 +402,240 @@ Numbering NumberPoints(MPI_Comm comm,
     }
   }
   return numbering;
+}
+
+//------------------------------------------------------------------------------
+// The connected components of the whole mesh and what the solve needs of them: the constant
+// harmonic of each, 1_j / sqrt(mass_j), is an exact null vector of Q (Q 1 = 0: the rows of the
+// cotan and P1 stiffness sum to zero), so the solve writes those with eigenvalue 0 itself and
+// keeps SLEPc's pairs only in their D-orthogonal complement (step 3 of the header).
+struct Components
+{
+  /// The component (0..Count-1) of each used point of the piece.
+  std::vector<int> Label;
+  int Count = 0;
+  /// Per component, summed over all processes' owned points: the lumped mass (the solve's
+  /// units; 1_j^T D 1_j for the consistent mass too, whose rows sum to the lumped one) and the
+  /// number of points.
+  std::vector<double> Mass;
+  std::vector<long long> Points;
+  /// The components by decreasing number of points (ties by label): the order of their zero
+  /// eigenvalues, as the built-in solver's (Components.cxx, Smallest).
+  std::vector<int> Order;
+};
+
+/**
+ * The connected components of the distributed mesh, without gathering it (collective). Each
+ * process labels the components of its own cells (spectral::LabelComponents). Only border
+ * points (BorderPoints) can be held by another piece, or merged with a coincident copy in the
+ * same piece, so they are the only links between local components: every process receives the
+ * pairs (global point number, local component) of every process's border points (O(seam), as
+ * NumberPoints receives their coordinates), unites the local components that share a point,
+ * the same way on every process, and numbers the components by their first local component in
+ * rank order. Then the components' masses (from `lumped`, the distributed lumped mass) and
+ * point counts are summed over the owned points of all processes.
+ */
+Components DistributedComponents(MPI_Comm comm,
+  const spectral::TriangleMesh& mesh,
+  const Numbering& numbering,
+  Vec lumped)
+{
+  int rank = 0;
+  int size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int n = static_cast<int>(mesh.Vertices.rows());
+
+  // Local components, numbered by their first point.
+  const spectral::ComponentLabels local = spectral::LabelComponents(mesh);
+  const int localCount = local.Count;
+  int offset = 0;
+  int nodes = 0;
+  MPI_Exscan(&localCount, &offset, 1, MPI_INT, MPI_SUM, comm);
+  MPI_Allreduce(&localCount, &nodes, 1, MPI_INT, MPI_SUM, comm);
+  if (rank == 0)
+  {
+    offset = 0;
+  }
+
+  // Every process's links (global point number, local component + offset), in rank order.
+  const std::vector<int> border = BorderPoints(mesh);
+  std::vector<long long> links;
+  links.reserve(2 * border.size());
+  for (const int point : border)
+  {
+    links.push_back(numbering.Global[point]);
+    links.push_back(offset + local.Label[point]);
+  }
+  const int count = static_cast<int>(links.size());
+  std::vector<int> counts(size);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::vector<int> displacements(size + 1, 0);
+  std::partial_sum(counts.begin(), counts.end(), displacements.begin() + 1);
+  std::vector<long long> all(static_cast<std::size_t>(displacements[size]));
+  MPI_Allgatherv(links.data(),
+    count,
+    MPI_LONG_LONG,
+    all.data(),
+    counts.data(),
+    displacements.data(),
+    MPI_LONG_LONG,
+    comm);
+  // The local components (nodes) joined by a point they share: the graph of those links,
+  // labelled in the order of the nodes, the same on every process.
+  std::vector<std::pair<long long, int>> byPoint(all.size() / 2);
+  for (std::size_t l = 0; l < byPoint.size(); ++l)
+  {
+    byPoint[l] = { all[2 * l], static_cast<int>(all[2 * l + 1]) };
+  }
+  std::sort(byPoint.begin(), byPoint.end());
+  std::vector<Eigen::Triplet<double>> joined;
+  for (std::size_t l = 1; l < byPoint.size(); ++l)
+  {
+    if (byPoint[l].first == byPoint[l - 1].first)
+    {
+      joined.emplace_back(byPoint[l].second, byPoint[l - 1].second, 1.0);
+      joined.emplace_back(byPoint[l - 1].second, byPoint[l].second, 1.0);
+    }
+  }
+  spectral::SparseMatrix graph(nodes, nodes);
+  graph.setFromTriplets(joined.begin(), joined.end());
+  const spectral::ComponentLabels global = spectral::LabelComponents(graph);
+  Components components;
+  components.Count = global.Count;
+  components.Label.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+  {
+    components.Label[i] = global.Label[offset + local.Label[i]];
+  }
+
+  // Masses and point counts over the owned points of all processes.
+  components.Mass.assign(static_cast<std::size_t>(components.Count), 0.0);
+  components.Points.assign(static_cast<std::size_t>(components.Count), 0);
+  PetscInt first = 0;
+  MH_PETSC(VecGetOwnershipRange(lumped, &first, nullptr));
+  const PetscScalar* mass = nullptr;
+  MH_PETSC(VecGetArrayRead(lumped, &mass));
+  for (int i = 0; i < n; ++i)
+  {
+    if (numbering.Owned[i])
+    {
+      components.Mass[components.Label[i]] += mass[numbering.Global[i] - first];
+      ++components.Points[components.Label[i]];
+    }
+  }
+  MH_PETSC(VecRestoreArrayRead(lumped, &mass));
+  MPI_Allreduce(
+    MPI_IN_PLACE, components.Mass.data(), components.Count, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(
+    MPI_IN_PLACE, components.Points.data(), components.Count, MPI_LONG_LONG, MPI_SUM, comm);
+  components.Order.resize(static_cast<std::size_t>(components.Count));
+  std::iota(components.Order.begin(), components.Order.end(), 0);
+  std::stable_sort(components.Order.begin(),
+    components.Order.end(),
+    [&components](int a, int b) { return components.Points[a] > components.Points[b]; });
+  return components;
+}
+
+//------------------------------------------------------------------------------
+// Deflation of the constants from distributed vectors, on the owned rows: `label` is the
+// component of each owned row, `lumped` the lumped mass of each. D 1_j is the lumped mass on
+// component j (for the consistent mass too), so c_j^T D x = sum_{i in j} lumped_i x_i /
+// sqrt(mass_j), and x - sum_j (c_j^T D x) c_j subtracts from x its mass-weighted mean on
+// every component.
+class Constants
+{
+public:
+  Constants(const Components& components, std::vector<int> label, Vec lumped)
+    : Parts(components)
+    , Label(std::move(label))
+  {
+    const PetscScalar* mass = nullptr;
+    MH_PETSC(VecGetArrayRead(lumped, &mass));
+    this->Lumped.assign(mass, mass + this->Label.size());
+    MH_PETSC(VecRestoreArrayRead(lumped, &mass));
+    this->Comm = PetscObjectComm(reinterpret_cast<PetscObject>(lumped));
+  }
+
+  /// x = c_j, the constant harmonic of component j.
+  void Set(Vec x, int j) const
+  {
+    PetscScalar* values = nullptr;
+    MH_PETSC(VecGetArray(x, &values));
+    const double value = 1.0 / std::sqrt(this->Parts.Mass[j]);
+    for (std::size_t r = 0; r < this->Label.size(); ++r)
+    {
+      values[r] = this->Label[r] == j ? value : 0.0;
+    }
+    MH_PETSC(VecRestoreArray(x, &values));
+  }
+
+  /**
+   * Deflates x (collective): returns the share of its squared norm (in the lumped mass) that
+   * lies in the span of the constants, and unless that is above `keepBelow`, removes its
+   * components along every c_j and sets it to zero on the components that hold less than
+   * NegligibleShare of its squared norm. The operators do not couple components, so an
+   * eigenvector is zero off the components whose eigenvalue it has: what a Krylov vector holds
+   * there is round-off, which on debris rows (entries 1e12 times the others') would dominate
+   * its residual.
+   */
+  double Deflate(Vec x, double keepBelow) const
+  {
+    const std::size_t count = static_cast<std::size_t>(this->Parts.Count);
+    // Per component: sum lumped_i x_i, then sum lumped_i x_i^2.
+    std::vector<double> sums(2 * count, 0.0);
+    PetscScalar* values = nullptr;
+    MH_PETSC(VecGetArray(x, &values));
+    for (std::size_t r = 0; r < this->Label.size(); ++r)
+    {
+      const double weighted = this->Lumped[r] * values[r];
+      sums[this->Label[r]] += weighted;
+      sums[count + this->Label[r]] += weighted * values[r];
+    }
+    MPI_Allreduce(
+      MPI_IN_PLACE, sums.data(), static_cast<int>(2 * count), MPI_DOUBLE, MPI_SUM, this->Comm);
+    double removed = 0.0;
+    double total = 0.0;
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      removed += sums[j] * sums[j] / this->Parts.Mass[j];
+      total += sums[count + j];
+    }
+    const double share = total > 0.0 ? removed / total : 1.0;
+    if (!(share > keepBelow))
+    {
+      for (std::size_t r = 0; r < this->Label.size(); ++r)
+      {
+        const int j = this->Label[r];
+        values[r] = sums[count + j] > NegligibleShare * total
+          ? values[r] - sums[j] / this->Parts.Mass[j]
+          : 0.0;
+      }
+    }
+    MH_PETSC(VecRestoreArray(x, &values));
+    return share;
+  }
+
+private:
+  const Components& Parts;
+  std::vector<int> Label;
+  std::vector<double> Lumped;
+  MPI_Comm Comm = MPI_COMM_NULL;
+};
+
+//------------------------------------------------------------------------------
+// Makes the entry of largest magnitude of x positive, over all processes, as the built-in
+// solver does (EigenSolver.cxx, NormalizeSigns; a tie keeps the sign). Collective.
+void NormalizeSign(Vec x)
+{
+  PetscReal largest = 0.0;
+  PetscReal smallest = 0.0;
+  MH_PETSC(VecMax(x, nullptr, &largest));
+  MH_PETSC(VecMin(x, nullptr, &smallest));
+  if (-smallest > largest)
+  {
+    MH_PETSC(VecScale(x, -1.0));
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -943,7 +1182,22 @@ Result Solve(vtkMultiProcessController* controller,
   }
   progress(0.05);
 
-  // 3. The interval: Weyl's law for its upper end, widened until the inertia counts m.
+  // The connected components: each one's constant harmonic is written with eigenvalue 0, the
+  // largest components' first; SLEPc's pairs are kept in their D-orthogonal complement.
+  const Components components = DistributedComponents(comm, mesh, numbering, lumped.Object);
+  const int zeros = std::min(m, components.Count);
+  if (components.Count > 1 && m <= components.Count)
+  {
+    warn("NumberOfHarmonics " + std::to_string(m) + " does not exceed the " +
+      std::to_string(components.Count) +
+      " connected components: every harmonic is constant on one component (eigenvalue 0), so "
+      "filtering can only move whole components.");
+  }
+
+  // 3. The interval (unless the constants are all the harmonics asked for): Weyl's law for
+  // its upper end, widened until the inertia counts m (the zero eigenvalues among them; they
+  // are at most the number of components, so that at least m - zeros non-zero eigenvalues lie
+  // below it).
   stage("Interval");
   const double first =
     spectral::WeylEigenvalue(1.0, std::max(measure, std::numeric_limits<double>::min()), dimension);
@@ -951,7 +1205,15 @@ Result Solve(vtkMultiProcessController* controller,
   double upper = 1.2 *
     spectral::WeylEigenvalue(
       m + 1.0, std::max(measure, std::numeric_limits<double>::min()), dimension);
-  PetscInt below = CountBelow(Q.Object, D.Object, upper);
+  PetscInt below = zeros;
+  if (zeros < m)
+  {
+    below = CountBelow(Q.Object, D.Object, upper);
+  }
+  else
+  {
+    upper = 0.0;
+  }
   for (int attempt = 0; below < m; ++attempt)
   {
     if (attempt > 60)
@@ -976,7 +1238,7 @@ Result Solve(vtkMultiProcessController* controller,
     partitions = size;
   }
   const PetscInt owned = numbering.OwnedCount;
-  const int slices = std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics);
+  const int slices = zeros < m ? std::max(1, (m + SliceHarmonics - 1) / SliceHarmonics) : 0;
 
   // The rows of this piece's points are the only full copy of the harmonics a process keeps:
   // each slice's pairs are checked, then written there (seam copies from their owners), and
@@ -990,6 +1252,7 @@ Result Solve(vtkMultiProcessController* controller,
   double* harmonics = rows.Harmonics->GetPointer(0);
   RowWriter writer(lumped.Object, numbering.Global, prepared.InputPointIds);
   std::vector<vtkIdType> ownedTuples(static_cast<std::size_t>(owned));
+  std::vector<int> ownedLabels(static_cast<std::size_t>(owned));
   {
     PetscInt first = 0;
     PetscInt end = 0;
@@ -999,9 +1262,11 @@ Result Solve(vtkMultiProcessController* controller,
       if (numbering.Owned[i])
       {
         ownedTuples[numbering.Global[i] - first] = prepared.InputPointIds[i];
+        ownedLabels[numbering.Global[i] - first] = components.Label[i];
       }
     }
   }
+  const Constants constants(components, std::move(ownedLabels), lumped.Object);
   PairChecks checks(Q.Object, D.Object);
   spectral::Vector lambda(m);
   std::vector<double> residualNorms(static_cast<std::size_t>(m), 0.0);
@@ -1012,7 +1277,46 @@ Result Solve(vtkMultiProcessController* controller,
   OwnedVec vector;
   MH_PETSC(MatCreateVecs(Q.Object, &vector.Object, nullptr));
   spectral::DenseMatrix DX(owned, GramColumns);
+  // Pairs written (columns of the harmonics), and those of them whose Gram matrix against the
+  // written rows is still to be taken (the columns of DX, up to GramColumns at once).
   int found = 0;
+  int pending = 0;
+  const auto takeGram = [&]()
+  {
+    if (pending > 0)
+    {
+      gram.block(0, found - pending, found, pending) =
+        WrittenTimes(harmonics, m, found, ownedTuples, DX.leftCols(pending)) / inverseScale;
+      pending = 0;
+    }
+  };
+  // The pair (value, vector) as the next column: D-normalized, checked and written (scaled
+  // back from the mesh's units).
+  const auto add = [&](double value)
+  {
+    const int k = found;
+    lambda[k] = value;
+    const PairError error = checks.NormalizeAndCheck(vector.Object, value, DX.col(pending).data());
+    residualNorms[k] = error.ResidualNorm;
+    backwardErrors[k] = error.Backward;
+    result.MaxBackwardError = std::max(result.MaxBackwardError, error.Backward);
+    writer.Write(vector.Object,
+      [&](vtkIdType tuple, double h) { harmonics[tuple * m + k] = h * inverseScale; });
+    ++found;
+    if (++pending == GramColumns)
+    {
+      takeGram();
+    }
+  };
+  for (int r = 0; r < zeros; ++r)
+  {
+    constants.Set(vector.Object, components.Order[r]);
+    add(0.0);
+  }
+  // SLEPc's pairs in the span of the constants (their eigenvalues are those of Q 1 = 0 as
+  // rounded: tiny, or on debris with near-coincident points as large as 1e-5 of the
+  // component's largest) are left out; the others are deflated (Constants::Deflate).
+  int zeroModes = 0;
   for (int j = 0; j < slices && found < m; ++j)
   {
     if (AnyCancelled(comm, settings))
@@ -1026,38 +1330,33 @@ Result Solve(vtkMultiProcessController* controller,
     result.InertiaCount += static_cast<int>(slice.Count);
     result.Computed += static_cast<int>(slice.Order.size());
     result.Shifts += static_cast<int>(slice.Shifts);
-    // The smallest pairs of the slice, D-normalized, checked and written, in groups of
-    // GramColumns: the Gram matrix X^T D X of a group's columns is then taken against the
-    // written rows of all columns so far (scaled back from the mesh's units).
-    const int count = std::min(static_cast<int>(slice.Order.size()), m - found);
-    for (int c0 = 0; c0 < count; c0 += GramColumns)
+    for (std::size_t c = 0; c < slice.Order.size() && found < m; ++c)
     {
-      const int columns = std::min(GramColumns, count - c0);
-      for (int c = c0; c < c0 + columns; ++c)
+      MH_PETSC(EPSGetEigenvector(eps.Object, slice.Order[c].second, vector.Object, nullptr));
+      if (constants.Deflate(vector.Object, 0.5) > 0.5)
       {
-        const int k = found + c;
-        lambda[k] = slice.Order[c].first;
-        MH_PETSC(EPSGetEigenvector(eps.Object, slice.Order[c].second, vector.Object, nullptr));
-        const PairError error =
-          checks.NormalizeAndCheck(vector.Object, lambda[k], DX.col(c - c0).data());
-        residualNorms[k] = error.ResidualNorm;
-        backwardErrors[k] = error.Backward;
-        result.MaxBackwardError = std::max(result.MaxBackwardError, error.Backward);
-        writer.Write(vector.Object,
-          [&](vtkIdType tuple, double value) { harmonics[tuple * m + k] = value * inverseScale; });
+        ++zeroModes;
+        continue;
       }
-      const int written = found + c0 + columns;
-      gram.block(0, found + c0, written, columns) =
-        WrittenTimes(harmonics, m, written, ownedTuples, DX.leftCols(columns)) / inverseScale;
+      NormalizeSign(vector.Object);
+      add(slice.Order[c].first);
     }
-    found += count;
     progress(0.2 + 0.7 * found / m);
+  }
+  takeGram();
+  if (zeroModes > components.Count)
+  {
+    throw std::runtime_error("SLEPc returned " + std::to_string(zeroModes) +
+      " eigenvectors in the span of the constant harmonics of the " +
+      std::to_string(components.Count) + " connected components: lower Tolerance");
   }
   if (found < m)
   {
-    throw std::runtime_error("SLEPc found " + std::to_string(found) + " eigenpairs below " +
-      std::to_string(upper / (s * s)) + ", where the inertia counts " + std::to_string(below) +
-      " (" + std::to_string(m) + " needed)");
+    throw std::runtime_error("SLEPc found " + std::to_string(found - zeros) +
+      " non-zero eigenpairs below " + std::to_string(upper / (s * s)) +
+      ", where the inertia counts " + std::to_string(below) + " eigenvalues (" +
+      std::to_string(m - zeros) + " needed besides the zero eigenvalues of the " +
+      std::to_string(zeros) + " connected components)");
   }
 
   // 4. Checks with the core's definitions (Verification.h), on distributed vectors: the
@@ -1152,6 +1451,32 @@ Result Solve(vtkMultiProcessController* controller,
     {
       rows.Duplicates->SetValue(prepared.InputPointIds[i], vtkDataSetAttributes::DUPLICATEPOINT);
     }
+  }
+  // Components that no harmonic represents (more components than m): zero mass as well, as in
+  // the built-in solver (Basis.cxx, LeaveOutUnrepresented), so that the filters pass their
+  // points through unchanged.
+  if (zeros < components.Count)
+  {
+    std::vector<char> represented(static_cast<std::size_t>(components.Count), 0);
+    for (int r = 0; r < zeros; ++r)
+    {
+      represented[components.Order[r]] = 1;
+    }
+    long long left = 0;
+    for (int j = 0; j < components.Count; ++j)
+    {
+      left += represented[j] ? 0 : components.Points[j];
+    }
+    for (Eigen::Index i = 0; i < used; ++i)
+    {
+      if (!represented[components.Label[i]])
+      {
+        rows.Mass->SetValue(prepared.InputPointIds[i], 0.0);
+      }
+    }
+    warn(std::to_string(left) + " points of components that none of the " + std::to_string(m) +
+      " harmonics represents have zero harmonics and mass: the filters pass them through "
+      "unchanged.");
   }
   result.UpperEnd = upper / (s * s);
   progress(1.0);

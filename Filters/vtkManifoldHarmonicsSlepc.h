@@ -23,16 +23,27 @@
  *    of spectral::UnitScale
  *    of the global diameter, and adds them into distributed PETSc AIJ matrices by global number
  *    (MatSetValues ADD_VALUES; PETSc sends the rows of other processes at assembly).
- * 3. Eigensolve. The interval [a, b] with a = -lambda_1 / 2 and b = 1.2 lambda_(m+1) by Weyl's
+ * 3. Zero modes, then the eigensolve. The connected components (DistributedComponents: each
+ *    process's own, joined across processes through the border points' global numbers) give
+ *    the first harmonics: the constant 1/sqrt(mass of the component) on each, the largest
+ *    components (most points) first, with eigenvalue exactly 0 (Q 1 = 0). Spectrum slicing
+ *    refuses a deflation space (EPSSetDeflationSpace), so the constants are deflated from
+ *    SLEPc's pairs: a pair whose vector lies more than half (D-norm) in their span is a zero
+ *    eigenvalue as rounded (on debris with near-coincident points as large as 1e-5 of its
+ *    largest eigenvalue, or negative) and is left out; every other is projected onto their
+ *    D-orthogonal complement. Each harmonic's entry of largest magnitude is made positive, as
+ *    by the built-in solver. With m no more than the components, there is no eigensolve.
+ *    The interval [a, b] with a = -lambda_1 / 2 and b = 1.2 lambda_(m+1) by Weyl's
  *    law (spectral::WeylEigenvalue of the area or volume; a is below the zero eigenvalue of the
  *    singular stiffness), b widened until the inertia of a MUMPS LDL^T factorization of
- *    Q - b D counts at least m eigenvalues below b. SLEPc's Krylov-Schur computes every
+ *    Q - b D counts at least m eigenvalues below b (the zero ones among them). SLEPc's Krylov-Schur computes every
  *    eigenpair of [a, b] by spectrum slicing (shift-and-invert, MUMPS Cholesky with inertia,
  *    ICNTL(13) = 1 and ICNTL(24) = 1; npart sub-intervals solved by groups of processes at
  *    once), in slices of about 200 eigenvalues, ascending, until m pairs are found: between
  *    slices the abort flag is polled (on every process) and progress reported, since spectrum
  *    slicing calls no monitor. In each slice the inertia at its ends must count the pairs SLEPc
- *    returned. The m smallest are kept and D-normalized.
+ *    returned (zero eigenvalues included). The m - C smallest non-zero pairs are kept (C the
+ *    constants written) and D-normalized.
  * 4. Rows and checks. Each pair is checked on the distributed vectors (relative residual and
  *    componentwise backward error, the core's definitions and tolerances, Verification.h; a
  *    pair above both is an error) and a VecScatter writes its values into the rows of every
@@ -95,8 +106,9 @@ struct Result
   double MaxResidual = 0.0;
   /// max |H^T M H - I| over all entries.
   double OrthonormalityError = 0.0;
-  /// Eigenvalues below the upper end of the interval (MUMPS inertia at that shift), the number
-  /// SLEPc computed in the interval, and the upper end (in the units of the mesh).
+  /// Eigenvalues in the slices solved (MUMPS inertia at their ends, zero eigenvalues in them
+  /// included), the number SLEPc computed there, and the upper end (in the units of the mesh);
+  /// all 0 when the constants of the components are all the harmonics asked for.
   int InertiaCount = 0;
   int Computed = 0;
   double UpperEnd = 0.0;
