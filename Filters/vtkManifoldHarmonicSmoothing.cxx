@@ -15,6 +15,7 @@
 #include "vtkManifoldHarmonicsParameters.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
@@ -64,6 +65,10 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   // internal pipeline does not touch the input.
   this->Basis->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
+  this->Basis->AddObserver(
+    vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
+  this->Filter->AddObserver(
+    vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
   this->Transform->SetInputConnection(this->Basis->GetOutputPort());
   this->Filter->SetFilterKindToLowPass();
   // CutoffFraction is the filter's Cutoff in fractions of the highest computed frequency: one
@@ -82,6 +87,20 @@ void vtkManifoldHarmonicSmoothing::ForwardProgress(vtkObject*, unsigned long, vo
   if (this->GetAbortExecute())
   {
     this->Basis->SetAbortExecute(1);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::ForwardWarning(vtkObject*, unsigned long, void* data)
+{
+  // What vtkWarningMacro does with a message: to the observers, or else to the output window.
+  if (this->HasObserver(vtkCommand::WarningEvent))
+  {
+    this->InvokeEvent(vtkCommand::WarningEvent, data);
+  }
+  else if (vtkObject::GetGlobalWarningDisplay())
+  {
+    vtkOutputWindowDisplayWarningText(static_cast<const char*>(data));
   }
 }
 
