@@ -162,9 +162,10 @@ void WarnAboutConstantHarmonics(vtkSpectralFilter* self,
       << moved << " of the " << constants
       << " constant harmonic(s) (eigenvalue 0 up to rounding, frequencies up to "
       << std::sqrt(std::max(largestZero, 0.0)) << ") get the gain " << movedGain
-      << " instead of F(0) = " << atZero << ": the cutoff (frequency " << absolute.Cutoff
-      << ") lies among their rounding-sized frequencies, so the points of those components move "
-         "towards the origin. Choose a cutoff clear of them.");
+      << " instead of F(0) = " << atZero
+      << ": the transfer function changes among their rounding-sized frequencies, so the points "
+         "of those components move towards the origin. Choose a cutoff (or a time) clear of "
+         "them.");
   }
 }
 

@@ -1340,6 +1340,37 @@ bool TestCutoffsOutsideTheSpectrum()
   ok &= Check(succeeded &&
       constant.Messages->GetWarningMessage().find("no non-constant harmonic") != std::string::npos,
     "a basis of constant harmonics only does not warn");
+
+  // Rounding-sized eigenvalues (set by hand: what a machine may return for the zero ones) that
+  // a tiny cutoff splits: the components of the harmonics above it would go to the origin.
+  vtkNew<vtkPolyData> rounded;
+  rounded->ShallowCopy(constant.Transform->GetOutput());
+  vtkNew<vtkDoubleArray> tiny;
+  tiny->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  for (int k = 0; k < 10; ++k)
+  {
+    tiny->InsertNextValue(1e-12 * k);
+  }
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(rounded->GetFieldData());
+  fields->AddArray(tiny); // replaces the basis's eigenvalues
+  rounded->SetFieldData(fields);
+  vtkNew<vtkSpectralFilter> split;
+  vtkNew<vtkTest::ErrorObserver> splitMessages;
+  split->AddObserver(vtkCommand::WarningEvent, splitMessages);
+  split->AddObserver(vtkCommand::ErrorEvent, splitMessages);
+  split->SetInputData(rounded);
+  split->SetCutoffUnitsToAbsoluteFrequency();
+  split->SetCutoff(std::sqrt(4.5e-12));
+  split->SetTransition(0.0);
+  split->Update();
+  std::cout << "Expected warning (rounding-sized eigenvalues split by the cutoff):"
+            << AfterLocation(splitMessages->GetWarningMessage());
+  ok &= Check(!splitMessages->GetError() &&
+      splitMessages->GetWarningMessage().find("5 of the 10 constant harmonic(s)") !=
+        std::string::npos &&
+      splitMessages->GetWarningMessage().find("towards the origin") != std::string::npos,
+    "a cutoff among rounding-sized eigenvalues does not warn that components go to the origin");
   return ok;
 }
 } // anonymous namespace
