@@ -164,8 +164,9 @@ void AddBasisArrays(vtkDataSet* output,
 
 //------------------------------------------------------------------------------
 // The polygons and strips of the input as triangles, through an internal vtkTriangleFilter
-// when the input holds anything but triangles. Vertices and lines are dropped, and so are ghost
-// cells (vtkManifoldHarmonicsGhosts: another process owns them). The points are the input's.
+// when the input holds anything but triangles. Vertices and lines are passed on, for ToCoreMesh
+// to leave out with a warning; ghost cells are dropped (vtkManifoldHarmonicsGhosts: another
+// process owns them). The points are the input's.
 vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPolyData* input)
 {
   vtkSmartPointer<vtkPolyData> counted = vtkManifoldHarmonicsGhosts::CountedCells(input);
@@ -178,8 +179,8 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPoly
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20230111)
   triangulate->SetContainerAlgorithm(self);
 #endif
-  triangulate->PassVertsOff();
-  triangulate->PassLinesOff();
+  triangulate->PassVertsOn();
+  triangulate->PassLinesOn();
   triangulate->SetInputData(counted);
   triangulate->Update();
   return triangulate->GetOutput();
@@ -645,6 +646,11 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
   for (const std::string& warning : cells.Warnings())
   {
     vtkWarningMacro(<< warning);
+  }
+  const std::string cloud = cells.PointCloudWarning(this->NumberOfNeighbors);
+  if (!cloud.empty())
+  {
+    vtkWarningMacro(<< cloud);
   }
   if (numPts > VTK_INT_MAX)
   {

@@ -15,10 +15,12 @@
 #include "vtkManifoldHarmonicsParameters.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
 
+#include "Spectral/Common/Defaults.h"
 #include "Spectral/Common/Eigenvalues.h"
 
 #include <algorithm>
@@ -28,20 +30,6 @@ vtkStandardNewMacro(vtkManifoldHarmonicSmoothing);
 
 namespace
 {
-//------------------------------------------------------------------------------
-// omega_max = sqrt(lambda_{m-1}) from the basis output, 0 when it has no eigenvalues (an empty
-// piece of a distributed run).
-double HighestFrequency(vtkPointSet* basisOutput)
-{
-  vtkDataArray* lambda =
-    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
-  if (!lambda || lambda->GetNumberOfTuples() == 0)
-  {
-    return 0.0;
-  }
-  return std::sqrt(std::max(lambda->GetTuple1(lambda->GetNumberOfTuples() - 1), 0.0));
-}
-
 //------------------------------------------------------------------------------
 // Whether a basis with eigenvalues has none but the zero ones of its constant harmonics (one per
 // connected component), by the rule of the spectral filter that ran on it.
@@ -62,7 +50,7 @@ bool OnlyConstantHarmonics(vtkPointSet* basisOutput, vtkSpectralFilter* filter)
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   : NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
-  , CutoffFraction(0.5)
+  , CutoffFraction(spectral::DefaultCutoffFraction)
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
   , NumberOfThreads(0)
   , BoundaryCondition(vtkManifoldHarmonicBasis::NEUMANN)
@@ -77,8 +65,15 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   // internal pipeline does not touch the input.
   this->Basis->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
+  this->Basis->AddObserver(
+    vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
+  this->Filter->AddObserver(
+    vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
   this->Transform->SetInputConnection(this->Basis->GetOutputPort());
   this->Filter->SetFilterKindToLowPass();
+  // CutoffFraction is the filter's Cutoff in fractions of the highest computed frequency: one
+  // rule (spectral::ToAbsoluteUnits).
+  this->Filter->SetCutoffUnitsToFractionOfHighest();
   this->Filter->SetInputConnection(this->Transform->GetOutputPort());
 }
 
@@ -92,6 +87,20 @@ void vtkManifoldHarmonicSmoothing::ForwardProgress(vtkObject*, unsigned long, vo
   if (this->GetAbortExecute())
   {
     this->Basis->SetAbortExecute(1);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::ForwardWarning(vtkObject*, unsigned long, void* data)
+{
+  // What vtkWarningMacro does with a message: to the observers, or else to the output window.
+  if (this->HasObserver(vtkCommand::WarningEvent))
+  {
+    this->InvokeEvent(vtkCommand::WarningEvent, data);
+  }
+  else if (vtkObject::GetGlobalWarningDisplay())
+  {
+    vtkOutputWindowDisplayWarningText(static_cast<const char*>(data));
   }
 }
 
@@ -157,7 +166,7 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->UpdateProgress(0.9);
   this->SetProgressText("Spectral filter");
   this->Filter->SetNumberOfThreads(this->NumberOfThreads);
-  this->Filter->SetCutoff(this->CutoffFraction * HighestFrequency(this->Basis->GetOutput()));
+  this->Filter->SetCutoff(this->CutoffFraction);
   this->Filter->Update(); // collective: before any process returns
   if (this->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
   {
@@ -210,7 +219,8 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default "
      << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n";
-  os << indent << "CutoffFraction: " << this->CutoffFraction << " (default 0.5)\n";
+  os << indent << "CutoffFraction: " << this->CutoffFraction << " (default "
+     << spectral::DefaultCutoffFraction << ")\n";
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "BoundaryCondition: "
      << (this->BoundaryCondition == vtkManifoldHarmonicBasis::DIRICHLET ? "Dirichlet" : "Neumann")

@@ -15,7 +15,11 @@
  * highest of the m = NumberOfHarmonics harmonics. So CutoffFraction 0.5 keeps about the lowest
  * quarter of the harmonics (on a surface the number of harmonics below omega grows like
  * omega^2), and 1 keeps (nearly) all of them. The step from gain 1 to gain 0 is a raised cosine
- * of relative width 0.1 around the cutoff (vtkSpectralFilter::Transition).
+ * of relative width 0.1 around the cutoff (vtkSpectralFilter::Transition). This is
+ * vtkSpectralFilter's Cutoff in its FRACTION_OF_HIGHEST units, by the same rule
+ * (spectral::ToAbsoluteUnits), and with the same default (spectral::DefaultCutoffFraction).
+ * The warnings of the internal stages (a point cloud, a cutoff outside the spectrum) are this
+ * filter's.
  *
  * Input: any vtkPointSet with polygons (triangulated internally) or linear 3-D cells (split into
  * tetrahedra internally; see vtkManifoldHarmonicBasis). Output: the input (cells, point
@@ -93,7 +97,8 @@ public:
   /**
    * Cutoff frequency as a fraction of the highest computed frequency omega_max =
    * sqrt(lambda_{m-1}): harmonics below CutoffFraction * omega_max are kept, those above are
-   * removed. Smaller is smoother. Range [0.001, 1]. Default is 0.5.
+   * removed. Smaller is smoother. Range [0.001, 1]. Default is 0.5
+   * (spectral::DefaultCutoffFraction, also vtkSpectralFilter's default Cutoff).
    */
   vtkSetClampMacro(CutoffFraction, double, 0.001, 1.0);
   vtkGetMacro(CutoffFraction, double);
@@ -199,6 +204,9 @@ protected:
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
+  /// The warnings of the internal stages, as this filter's: its observers see them (and the
+  /// output window shows them once, as it would the stage's).
+  void ForwardWarning(vtkObject* caller, unsigned long event, void* data);
 
   // The internal pipeline, kept between executions so that a new cutoff reuses the basis.
   vtkSmartPointer<vtkPointSet> Input;    // shallow copy of the input, replaced when it changes

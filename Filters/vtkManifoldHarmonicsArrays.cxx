@@ -27,7 +27,9 @@
 #include "Spectral/Operators/PointCloud.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 namespace
@@ -307,6 +309,50 @@ void FillSpectrum(vtkTable* table,
 }
 
 //------------------------------------------------------------------------------
+// The number of edges that more than two distinct triangles share (duplicated triangles, which
+// the core leaves out with its own warning, count once; collapsed triangles not at all).
+static vtkIdType NonManifoldEdges(const spectral::Triangles& faces)
+{
+  std::vector<std::array<int, 3>> distinct;
+  distinct.reserve(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+  {
+    std::array<int, 3> face = { faces(f, 0), faces(f, 1), faces(f, 2) };
+    std::sort(face.begin(), face.end());
+    if (face[0] != face[1] && face[1] != face[2])
+    {
+      distinct.push_back(face);
+    }
+  }
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  std::vector<std::uint64_t> edges;
+  edges.reserve(distinct.size() * 3);
+  for (const auto& face : distinct)
+  {
+    for (const auto& edge : { std::make_pair(face[0], face[1]), std::make_pair(face[0], face[2]),
+           std::make_pair(face[1], face[2]) })
+    {
+      edges.push_back((static_cast<std::uint64_t>(static_cast<std::uint32_t>(edge.first)) << 32) |
+        static_cast<std::uint32_t>(edge.second));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  vtkIdType count = 0;
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i])
+    {
+      ++j;
+    }
+    count += j - i > 2 ? 1 : 0;
+    i = j;
+  }
+  return count;
+}
+
+//------------------------------------------------------------------------------
 std::string MissingBasisAdvice(vtkDataSet* input)
 {
   vtkPointSet* points = vtkPointSet::SafeDownCast(input);
@@ -363,7 +409,41 @@ std::vector<std::string> CoreMesh::Warnings() const
       " hexahedra, voxels, wedges and pyramids into tetrahedra (neighbours split their shared "
       "faces alike).");
   }
+  if (this->HasCells() && this->VertexCells + this->LineCells > 0)
+  {
+    warnings.push_back("Left out " + std::to_string(this->VertexCells) + " vertex and " +
+      std::to_string(this->LineCells) + " line cells: the harmonics are those of the " +
+      std::to_string(this->SurfaceCells + this->VolumeCells) +
+      " surface and volume cells, and points that only vertices or lines use stay where they "
+      "are.");
+  }
+  const vtkIdType nonManifold = NonManifoldEdges(this->Mesh.Faces);
+  if (nonManifold > 0)
+  {
+    warnings.push_back(std::to_string(nonManifold) +
+      " edges are shared by more than two triangles (non-manifold): the harmonics are those of "
+      "the sheets joined along these edges. If they are separate surfaces, split them first "
+      "(Connectivity in ParaView, vtkPolyDataConnectivityFilter).");
+  }
   return warnings;
+}
+
+//------------------------------------------------------------------------------
+std::string CoreMesh::PointCloudWarning(int numberOfNeighbors) const
+{
+  if (!this->IsPointCloud())
+  {
+    return std::string();
+  }
+  std::ostringstream text;
+  text << "The input has " << this->Mesh.Vertices.rows() << " points and no cells"
+       << (this->VertexCells > 0 ? " but vertices" : "")
+       << ": it is treated as a point cloud (NumberOfNeighbors = " << numberOfNeighbors
+       << " neighbours per point). If it came from a surface reader that dropped its cells "
+          "(e.g. a PLY of triangle strips), the harmonics are those of the cloud, not of the "
+          "surface: read it with its faces, or rebuild them first (Delaunay 2D or a surface "
+          "reconstruction).";
+  return text.str();
 }
 
 namespace

@@ -144,6 +144,8 @@ std::string MissingBasisAdvice(vtkDataSet* input);
  *   point of smallest id, so two cells that share a face split it alike.
  * - vertices and lines are left out (a point set with no other cell is a point cloud).
  * - any other cell (quadratic, polyhedral, ...) is counted as unsupported.
+ * Every one of these interpretations that changes what the harmonics describe is said in
+ * Warnings() or PointCloudWarning().
  */
 struct CoreMesh
 {
@@ -169,8 +171,13 @@ struct CoreMesh
   /// Why the cells cannot be used (2-D and 3-D cells mixed, unsupported cells); empty if they
   /// can.
   std::string Problem() const;
-  /// What the conversion changed (cells split), one sentence each.
+  /// What the conversion changed or left out, one sentence each: cells split, vertex and line
+  /// cells left out beside surface or volume cells, edges shared by more than two triangles
+  /// (non-manifold: the harmonics join the sheets that meet there).
   std::vector<std::string> Warnings() const;
+  /// For a point cloud (IsPointCloud), that it is solved as one: the point count, the setting
+  /// that applies (numberOfNeighbors) and what to do if the cells were lost; empty otherwise.
+  std::string PointCloudWarning(int numberOfNeighbors) const;
 };
 
 /// Convert the cells of a point set (see CoreMesh).

@@ -6,6 +6,7 @@
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsCutoffs.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMultiProcessController.h"
@@ -17,7 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTable.h"
 
-#include "Spectral/Common/Eigenvalues.h"
+#include "Spectral/Common/Defaults.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,7 +117,7 @@ spectral::FilterKind ToFilterKind(int kind)
   }
 }
 
-/// The parameters of the core transfer function.
+/// The parameters of the core transfer function, in the filter's CutoffUnits.
 spectral::FilterParameters Parameters(vtkSpectralFilter* self)
 {
   spectral::FilterParameters parameters;
@@ -158,8 +159,7 @@ double HighFrequencyGain(const spectral::FilterParameters& parameters,
     throw spectral::InvalidInput(
       "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
   }
-  const double highestComputed = std::sqrt(std::max(lambda.maxCoeff(), 0.0));
-  return spectral::MeanGain(parameters, highestComputed, nyquist);
+  return spectral::MeanGain(parameters, spectral::HighestFrequency(lambda), nyquist);
 }
 
 /// The spectrum table: Index, Frequency, Gain, then the magnitudes before and after filtering.
@@ -174,40 +174,6 @@ void FillSpectrum(const spectral::Vector& lambda,
     signals.push_back({ job.Name, vtkManifoldHarmonicsArrays::Signal(job.Coefficients).View() });
   }
   vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, false, &gains, signals);
-}
-
-/// The slider ranges of a filter that has not run, or ran on constant harmonics only: they keep
-/// the panel's defaults (Cutoff 1, UpperCutoff 2, Time 0; see GetFrequencyRange).
-constexpr double InitialFrequencyRange[2] = { 0.0, 2.0 };
-constexpr double InitialTimeRange[2] = { 0.0, 1.0 };
-
-/// The ranges of the Cutoff and Time sliders (vtkSpectralFilter::GetFrequencyRange and
-/// GetTimeRange) from the eigenvalues of the basis; [0, 2] and [0, 1] when the basis has no
-/// non-constant harmonic. Zero eigenvalues by spectral::IsZeroEigenvalue with the scale omega_N^2.
-void SliderRanges(const spectral::Vector& lambda,
-  double nyquist,
-  double frequency[2],
-  double time[2])
-{
-  const double scale = nyquist * nyquist;
-  const auto nonZero = [scale](double value)
-  { return !spectral::IsZeroEigenvalue(value, scale) && std::isfinite(value); };
-  std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, frequency);
-  std::copy(InitialTimeRange, InitialTimeRange + 2, time);
-  if (lambda.size() == 0 || !nonZero(lambda[lambda.size() - 1]))
-  {
-    return; // no non-constant harmonic: the ranges of an unexecuted filter
-  }
-  frequency[1] = std::sqrt(lambda[lambda.size() - 1]);
-  // The lowest non-constant harmonic: the first eigenvalue clear of the zero ones.
-  for (Eigen::Index k = 0; k < lambda.size(); ++k)
-  {
-    if (nonZero(lambda[k]))
-    {
-      time[1] = 4.0 / lambda[k];
-      break;
-    }
-  }
 }
 
 /// The rows of `values` scaled to unit length (rows of zero length stay zero).
@@ -265,16 +231,16 @@ vtkSpectralFilter::vtkSpectralFilter()
   : ControlPoints(vtkDoubleArray::New())
 {
   this->FilterKind = LOW_PASS;
-  this->Cutoff = 1.0;
-  this->UpperCutoff = 2.0;
+  this->CutoffUnits = FRACTION_OF_HIGHEST;
+  this->Cutoff = spectral::DefaultCutoffFraction;
+  this->UpperCutoff = 1.0;
   this->Transition = 0.1;
   this->Gain = 2.0;
   this->Time = 0.0;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
   this->NumberOfThreads = 0;
-  std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, this->FrequencyRange);
-  std::copy(InitialTimeRange, InitialTimeRange + 2, this->TimeRange);
+  vtkManifoldHarmonicsCutoffs::InitialRanges(this->FrequencyRange, this->TimeRange);
   this->SetNumberOfOutputPorts(2);
   this->ControlPoints->SetNumberOfComponents(2);
   this->AddControlPoint(0.0, 1.0);
@@ -442,9 +408,14 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
   this->SetProgressText("Spectral filter");
   try
   {
-    const spectral::FilterParameters parameters = Parameters(this);
     const spectral::Vector lambda = basis.EigenvalueVector();
-    SliderRanges(lambda, nyquist, this->FrequencyRange, this->TimeRange);
+    const double firstNonZero = vtkManifoldHarmonicsCutoffs::FirstNonZeroEigenvalue(lambda, nyquist);
+    vtkManifoldHarmonicsCutoffs::SliderRanges(
+      lambda, firstNonZero, this->CutoffUnits, this->FrequencyRange, this->TimeRange);
+    // The parameters in the filter's units, validated there, then in frequencies.
+    const spectral::FilterParameters given = Parameters(this);
+    const spectral::FilterParameters parameters = spectral::ToAbsoluteUnits(
+      given, vtkManifoldHarmonicsCutoffs::ToFrequencyUnits(this->CutoffUnits), lambda, firstNonZero);
     const spectral::Vector gains = spectral::Gains(parameters, lambda);
     if (writeSpectrum)
     {
@@ -458,7 +429,10 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     }
     const double highFrequencyGain =
       this->ReinjectHighFrequencies ? HighFrequencyGain(parameters, nyquist, lambda) : 0.0;
-    vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", Cutoff " << this->Cutoff
+    vtkManifoldHarmonicsCutoffs::WarnAboutCutoffs(
+      this, given, parameters, lambda, nyquist, gains, highFrequencyGain);
+    vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", CutoffUnits " << this->CutoffUnits
+                  << ", Cutoff " << this->Cutoff << " (frequency " << parameters.Cutoff << ")"
                   << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
                   << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "
                   << highFrequencyGain);
@@ -510,8 +484,10 @@ void vtkSpectralFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FilterKind: " << this->FilterKind << " (default 0, LOW_PASS)\n";
-  os << indent << "Cutoff: " << this->Cutoff << " (default 1)\n";
-  os << indent << "UpperCutoff: " << this->UpperCutoff << " (default 2)\n";
+  os << indent << "CutoffUnits: " << this->CutoffUnits << " (default 1, FRACTION_OF_HIGHEST)\n";
+  os << indent << "Cutoff: " << this->Cutoff << " (default " << spectral::DefaultCutoffFraction
+     << ")\n";
+  os << indent << "UpperCutoff: " << this->UpperCutoff << " (default 1)\n";
   os << indent << "Transition: " << this->Transition << " (default 0.1)\n";
   os << indent << "Gain: " << this->Gain << " (default 2)\n";
   os << indent << "Time: " << this->Time << " (default 0)\n";

@@ -44,7 +44,27 @@
  * - BAND_EXAGGERATION (5): Gain in [Cutoff, UpperCutoff], 1 outside.
  * - HEAT_DIFFUSION (6): exp(-Time omega^2), the heat kernel after time Time.
  * - CUSTOM (7): piecewise linear through the control points (omega, gain), constant beyond them.
- * Frequencies are in radians per unit length of the mesh: omega = 2 pi / wavelength.
+ *
+ * Units (CutoffUnits) of Cutoff, UpperCutoff, the omega of the control points and Time:
+ * - FRACTION_OF_HIGHEST (1, the default): a fraction of the highest computed frequency
+ *   omega_max = sqrt(lambda_{m-1}); the default low pass at 0.5 keeps about the lowest quarter of
+ *   the computed harmonics on any model at any scale.
+ * - HARMONIC_INDEX (2): the frequency of harmonic k (fractional k interpolates between two
+ *   harmonics); with Transition 0 a low pass at k keeps the harmonics 0 to k.
+ * - ABSOLUTE_FREQUENCY (0): radians per unit length of the mesh, omega = 2 pi / wavelength (the
+ *   Frequency column of the spectrum); the same value means different things on models of
+ *   different sizes.
+ * In both relative units Time is in units of 1 / lambda_1 (lambda_1 the first non-zero
+ * eigenvalue): Time 1 damps the lowest non-constant harmonic by exp(-1). Transition and Gain
+ * have no units. The rule is spectral::ToAbsoluteUnits (Filters/Spectral/Filtering/Transfer.h).
+ *
+ * Errors and warnings: a negative (or non-finite) Cutoff, UpperCutoff or Time that the filter
+ * kind uses is an error at execution (the setters accept it, so that what a panel shows is what
+ * the filter reports on; the filter fails, as for any invalid parameter). A cutoff below the
+ * first non-zero frequency or above the highest computed one is a warning that names both
+ * frequencies and the gains that result; so is a basis of constant harmonics only, and a
+ * cutoff that falls among the rounding-sized frequencies of the constant harmonics (those
+ * components would move towards the origin).
  *
  * The filter keeps no state that affects its input: changing its parameters re-executes only
  * this filter, not the basis nor the transform upstream, so it can be driven interactively.
@@ -97,6 +117,31 @@ public:
     CUSTOM = 7
   };
 
+  /**
+   * How the cutoffs and the heat time are given (see the class documentation): the one
+   * declaration of their values, converted to spectral::FrequencyUnits by a checked switch
+   * (vtkSpectralFilter.cxx) and checked against the ParaView enumeration by
+   * Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in.
+   */
+  enum CutoffUnitsType
+  {
+    ABSOLUTE_FREQUENCY = 0,
+    FRACTION_OF_HIGHEST = 1,
+    HARMONIC_INDEX = 2
+  };
+
+  ///@{
+  /**
+   * Units of Cutoff, UpperCutoff, the control points' omega and Time. Default is
+   * FRACTION_OF_HIGHEST (with Cutoff spectral::DefaultCutoffFraction = 0.5).
+   */
+  vtkSetClampMacro(CutoffUnits, int, ABSOLUTE_FREQUENCY, HARMONIC_INDEX);
+  vtkGetMacro(CutoffUnits, int);
+  void SetCutoffUnitsToAbsoluteFrequency() { this->SetCutoffUnits(ABSOLUTE_FREQUENCY); }
+  void SetCutoffUnitsToFractionOfHighest() { this->SetCutoffUnits(FRACTION_OF_HIGHEST); }
+  void SetCutoffUnitsToHarmonicIndex() { this->SetCutoffUnits(HARMONIC_INDEX); }
+  ///@}
+
   ///@{
   /**
    * The transfer function F (see the class documentation). Default is LOW_PASS.
@@ -115,20 +160,22 @@ public:
 
   ///@{
   /**
-   * Cutoff frequency omega_c (radians per unit length): the edge of LOW_PASS, HIGH_PASS and
-   * ENHANCEMENT, the lower band edge of the band kinds. Compare with the Frequency column of the
-   * transform's spectrum. Range [0, VTK_DOUBLE_MAX]. Default is 1.
+   * Cutoff frequency omega_c, in CutoffUnits: the edge of LOW_PASS, HIGH_PASS and ENHANCEMENT,
+   * the lower band edge of the band kinds. Compare with the Frequency column of the transform's
+   * spectrum. Valid range [0, VTK_DOUBLE_MAX]: a negative value is an error at execution.
+   * Default is spectral::DefaultCutoffFraction = 0.5 (of the highest computed frequency).
    */
-  vtkSetClampMacro(Cutoff, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Cutoff, double);
   vtkGetMacro(Cutoff, double);
   ///@}
 
   ///@{
   /**
-   * Upper band edge of BAND_PASS, BAND_STOP and BAND_EXAGGERATION; must not be below Cutoff.
-   * Range [0, VTK_DOUBLE_MAX]. Default is 2.
+   * Upper band edge of BAND_PASS, BAND_STOP and BAND_EXAGGERATION, in CutoffUnits; must not be
+   * below Cutoff (an error at execution, as a negative value). Default is 1 (the highest
+   * computed frequency).
    */
-  vtkSetClampMacro(UpperCutoff, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(UpperCutoff, double);
   vtkGetMacro(UpperCutoff, double);
   ///@}
 
@@ -153,9 +200,10 @@ public:
   ///@{
   /**
    * Diffusion time t of HEAT_DIFFUSION, F = exp(-t omega^2); 0 is the identity, large t leaves
-   * the mass-weighted mean. In squared units of length. Range [0, VTK_DOUBLE_MAX]. Default is 0.
+   * the mass-weighted mean. In units of 1 / lambda_1 with relative CutoffUnits, in squared units
+   * of length with ABSOLUTE_FREQUENCY. A negative value is an error at execution. Default is 0.
    */
-  vtkSetClampMacro(Time, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Time, double);
   vtkGetMacro(Time, double);
   ///@}
 
@@ -227,16 +275,19 @@ public:
 
   ///@{
   /**
-   * Slider ranges for the ParaView panel, from the basis of the last execution (results, not
-   * parameters): FrequencyRange = [0, omega_max], omega_max = sqrt(lambda_{m-1}) the highest
-   * computed frequency (for Cutoff and UpperCutoff), and TimeRange = [0, 4 / lambda_1], where
-   * heat diffusion has damped the lowest non-constant harmonic to exp(-4) (for Time).
+   * Slider ranges for the ParaView panel, in CutoffUnits, from the basis of the last execution
+   * (results, not parameters): FrequencyRange (for Cutoff and UpperCutoff) is [0, omega_max],
+   * omega_max = sqrt(lambda_{m-1}) the highest computed frequency, in ABSOLUTE_FREQUENCY; [0, 1]
+   * in FRACTION_OF_HIGHEST; [0, m - 1] in HARMONIC_INDEX. TimeRange is [0, 4 / lambda_1] in
+   * ABSOLUTE_FREQUENCY, [0, 4] in relative units: up to where heat diffusion has damped the
+   * lowest non-constant harmonic to exp(-4).
    * The zero eigenvalues of the constant harmonics are told from the others by
    * spectral::IsZeroEigenvalue (Filters/Spectral/Common/Eigenvalues.h) with the scale omega_N^2
    * (omega_N the Nyquist frequency, see the class documentation). Before the first
-   * execution, and after one on a basis of constant harmonics only, [0, 2] and [0, 1]: the panel
-   * takes its default values from these ranges (Cutoff at the middle, UpperCutoff at the top,
-   * Time at the bottom), which keeps them at 1, 2 and 0.
+   * execution, and after one on a basis of constant harmonics only, [0, 1] and [0, 1] (or
+   * [0, m - 1] for harmonic indices, [0, 2] for absolute frequencies): the panel takes its default values from these ranges
+   * (Cutoff at the middle, UpperCutoff at the top, Time at the bottom), which keeps them at the
+   * defaults 0.5, 1 and 0.
    */
   vtkGetVector2Macro(FrequencyRange, double);
   vtkGetVector2Macro(TimeRange, double);
@@ -265,6 +316,7 @@ protected:
     vtkInformationVector* outputVector) override;
 
   int FilterKind;
+  int CutoffUnits;
   double Cutoff;
   double UpperCutoff;
   double Transition;

@@ -37,6 +37,7 @@
  * Default cases: 10000:100 100000:500.
  */
 #include "Basis.h"
+#include "Common/Defaults.h"
 #include "Common/Threads.h"
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
@@ -165,7 +166,10 @@ double FilterStageMilliseconds(const View& H,
 {
   spectral::FilterParameters parameters;
   parameters.Kind = spectral::FilterKind::LowPass;
-  parameters.Cutoff = 0.5 * std::sqrt(lambda[lambda.size() - 1]);
+  parameters.Cutoff = spectral::DefaultCutoffFraction;
+  // The default of vtkSpectralFilter: half the highest computed frequency.
+  parameters = spectral::ToAbsoluteUnits(
+    parameters, spectral::FrequencyUnits::FractionOfHighest, lambda, 0.0);
   const spectral::ConstRowView X(points.data(), points.rows(), points.cols());
   const spectral::ConstRowView C(coefficients.data(), coefficients.rows(), coefficients.cols());
   const double nyquist = spectral::NyquistFrequency(mesh);

@@ -331,6 +331,7 @@ int main(int argc, char* argv[])
   filter->SetInputConnection(transform->GetOutputPort());
   filter->SetNumberOfThreads(options.Threads);
   filter->SetFilterKind(options.Kind);
+  filter->SetCutoffUnitsToAbsoluteFrequency(); // the options are frequencies
   filter->SetCutoff(cutoff);
   filter->SetUpperCutoff(options.Upper >= 0.0 ? options.Upper : 2.0 * cutoff);
   filter->SetGain(options.Gain);

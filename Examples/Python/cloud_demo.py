@@ -132,6 +132,7 @@ def main():
     lowpass = vtkSpectralFilter()
     lowpass.SetInputConnection(transform.GetOutputPort())
     lowpass.SetFilterKindToLowPass()
+    lowpass.SetCutoffUnitsToAbsoluteFrequency()
     lowpass.SetCutoff(cutoff)
     lowpass.SetTransition(0.3)
     lowpass.Update()

@@ -239,6 +239,7 @@ def main(argv):
     lowpass = vtkSpectralFilter()
     lowpass.SetInputConnection(transform.GetOutputPort())
     lowpass.SetFilterKindToLowPass()
+    lowpass.SetCutoffUnitsToAbsoluteFrequency()
     noisy_basis.Update()
     values = noisy_basis.GetOutput().GetFieldData().GetArray(
         vtkManifoldHarmonicBasis.EigenvaluesArrayName())

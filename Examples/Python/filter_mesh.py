@@ -138,6 +138,7 @@ def main(argv):
     spectral.SetInputConnection(transform.GetOutputPort())
     spectral.SetNumberOfThreads(args.threads)
     spectral.SetFilterKind(KINDS[args.kind])
+    spectral.SetCutoffUnitsToAbsoluteFrequency()  # the options are frequencies
     spectral.SetCutoff(cutoff)
     spectral.SetUpperCutoff(args.upper if args.upper is not None else 2.0 * cutoff)
     spectral.SetGain(args.gain)

@@ -682,6 +682,48 @@ void OutsidePointsMayHoldNaN()
   }
 }
 
+//------------------------------------------------------------------------------
+// Relative units name absolute frequencies: a fraction of omega_max, the frequency of a harmonic
+// (linear between two, omega_max beyond the last), a time in units of 1 / lambda_1; negative
+// values are refused in the units they are given in.
+void RelativeUnits()
+{
+  Vector lambda(5);
+  lambda << -1e-14, 4.0, 9.0, 9.0, 25.0;
+  const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-15 * std::abs(b); };
+  Check(HighestFrequency(lambda) == 5.0 && HighestFrequency(Vector()) == 0.0, "highest frequency");
+  Check(HarmonicFrequency(lambda, 0.0) == 0.0, "harmonic 0: negative round-off is frequency 0");
+  Check(HarmonicFrequency(lambda, 1.0) == 2.0 && near(HarmonicFrequency(lambda, 1.5), 2.5),
+    "harmonic 1 and 1.5");
+  Check(HarmonicFrequency(lambda, 7.0) == 5.0, "an index beyond the last is the last");
+  CheckThrows<InvalidInput>([&lambda]() { HarmonicFrequency(lambda, -1.0); }, "negative index");
+  FilterParameters p;
+  p.Kind = FilterKind::BandPass;
+  p.Cutoff = 0.2;
+  p.UpperCutoff = 0.8;
+  p.Time = 2.0;
+  p.ControlPoints = { { 0.0, 1.0 }, { 1.0, 0.0 } };
+  const FilterParameters f = ToAbsoluteUnits(p, FrequencyUnits::FractionOfHighest, lambda, 4.0);
+  Check(near(f.Cutoff, 1.0) && near(f.UpperCutoff, 4.0) && f.Time == 0.5 &&
+      f.ControlPoints[1].first == 5.0 && f.ControlPoints[1].second == 0.0,
+    "fractions of the highest frequency, time in units of 1 / lambda_1");
+  p.Cutoff = 1.0;
+  p.UpperCutoff = 2.5;
+  const FilterParameters h = ToAbsoluteUnits(p, FrequencyUnits::HarmonicIndex, lambda, 4.0);
+  Check(h.Cutoff == 2.0 && h.UpperCutoff == 3.0 && h.Time == 0.5, "harmonic indices");
+  const FilterParameters a = ToAbsoluteUnits(p, FrequencyUnits::Absolute, lambda, 4.0);
+  Check(a.Cutoff == 1.0 && a.UpperCutoff == 2.5 && a.Time == 2.0, "absolute units unchanged");
+  Check(ToAbsoluteUnits(p, FrequencyUnits::FractionOfHighest, lambda, 0.0).Time == 0.0,
+    "no non-constant harmonic: a relative time is 0");
+  p.Cutoff = -0.1;
+  for (FrequencyUnits units : { FrequencyUnits::Absolute, FrequencyUnits::FractionOfHighest,
+         FrequencyUnits::HarmonicIndex })
+  {
+    CheckThrows<InvalidInput>([&p, units, &lambda]() { ToAbsoluteUnits(p, units, lambda, 4.0); },
+      "negative cutoff in units " + std::to_string(static_cast<int>(units)));
+  }
+}
+
 const Case Cases[] = {
   { "RoundTripFullBasis", RoundTripFullBasis },
   { "ReinjectionAndProjection", ReinjectionAndProjection },
@@ -699,6 +741,7 @@ const Case Cases[] = {
   { "ThreadsMatchOneThread", ThreadsMatchOneThread },
   { "FilterSignalKeepsOutsidePoints", FilterSignalKeepsOutsidePoints },
   { "OutsidePointsMayHoldNaN", OutsidePointsMayHoldNaN },
+  { "RelativeUnits", RelativeUnits },
 };
 } // namespace
 

@@ -17,6 +17,14 @@ constexpr int DefaultNumberOfHarmonics = 100;
 /// The neighbours of each point that the point-cloud Laplacian triangulates (Sharp and Crane's
 /// choice; Operators/PointCloud.h).
 constexpr int DefaultNumberOfNeighbors = 30;
+/// The low-pass cutoff as a fraction of the highest computed frequency sqrt(lambda_{m-1})
+/// (FrequencyUnits::FractionOfHighest in Filtering/Transfer.h): the default of
+/// vtkManifoldHarmonicSmoothing's CutoffFraction and of vtkSpectralFilter's Cutoff. On a surface
+/// the number of harmonics below omega grows like omega^2 (Weyl), so 0.5 keeps about the lowest
+/// quarter of the computed harmonics: a visible smoothing that keeps the shape, on any model at
+/// any scale and for any number of harmonics (an absolute cutoff collapses a small model to its
+/// centroid and leaves a large one unchanged).
+constexpr double DefaultCutoffFraction = 0.5;
 } // namespace spectral
 
 #endif

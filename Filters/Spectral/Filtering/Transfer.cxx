@@ -432,6 +432,62 @@ Vector Gains(const FilterParameters& p, const Vector& lambda)
 }
 
 //------------------------------------------------------------------------------
+double HighestFrequency(const Vector& lambda)
+{
+  return lambda.size() == 0 ? 0.0 : std::sqrt(std::max(lambda[lambda.size() - 1], 0.0));
+}
+
+//------------------------------------------------------------------------------
+double HarmonicFrequency(const Vector& lambda, double index)
+{
+  Require(lambda.size() > 0, "a harmonic index needs a basis with at least one harmonic");
+  Require(std::isfinite(index) && index >= 0.0,
+    "a harmonic index must be finite and >= 0, not " + Str(index));
+  const double last = static_cast<double>(lambda.size() - 1);
+  if (index >= last)
+  {
+    return HighestFrequency(lambda);
+  }
+  const auto k = static_cast<Eigen::Index>(std::floor(index));
+  const double s = index - static_cast<double>(k);
+  const double low = std::sqrt(std::max(lambda[k], 0.0));
+  const double high = std::sqrt(std::max(lambda[k + 1], 0.0));
+  return s == 0.0 ? low : (1.0 - s) * low + s * high;
+}
+
+//------------------------------------------------------------------------------
+FilterParameters ToAbsoluteUnits(const FilterParameters& p, FrequencyUnits units,
+  const Vector& lambda, double firstNonZeroEigenvalue)
+{
+  Validate(p);
+  if (units == FrequencyUnits::Absolute)
+  {
+    return p;
+  }
+  Require(units == FrequencyUnits::FractionOfHighest || units == FrequencyUnits::HarmonicIndex,
+    "unknown frequency units " + std::to_string(static_cast<int>(units)));
+  const double highest = HighestFrequency(lambda);
+  const auto frequency = [&lambda, units, highest](double value)
+  {
+    return units == FrequencyUnits::FractionOfHighest ? value * highest
+                                                      : HarmonicFrequency(lambda, value);
+  };
+  FilterParameters out = p;
+  if (p.Kind != FilterKind::HeatDiffusion && p.Kind != FilterKind::Custom)
+  {
+    out.Cutoff = frequency(p.Cutoff);
+    out.UpperCutoff =
+      std::isfinite(p.UpperCutoff) && p.UpperCutoff >= 0.0 ? frequency(p.UpperCutoff) : p.UpperCutoff;
+  }
+  for (auto& point : out.ControlPoints)
+  {
+    point.first = frequency(std::max(point.first, 0.0)) + std::min(point.first, 0.0);
+  }
+  out.Time = firstNonZeroEigenvalue > 0.0 ? p.Time / firstNonZeroEigenvalue : 0.0;
+  return out;
+}
+
+//------------------------------------------------------------------------------
 double NyquistFrequency(double edgeLengthSum, double edgeCount)
 {
   const double h = edgeCount > 0.0 ? edgeLengthSum / edgeCount : 0.0;

@@ -168,6 +168,54 @@ double Gain(const FilterParameters& p, double omega);
 Vector Gains(const FilterParameters& p, const Vector& lambda);
 
 /**
+ * How the frequencies of FilterParameters (Cutoff, UpperCutoff, the omega of the ControlPoints)
+ * and its Time are given (values match vtkSpectralFilter::CutoffUnitsType). The one home of the
+ * rule that turns a relative cutoff into a frequency, for vtkSpectralFilter and
+ * vtkManifoldHarmonicSmoothing (whose CutoffFraction is FractionOfHighest).
+ * - Absolute: omega in radians per unit length; Time in squared units of length.
+ * - FractionOfHighest: omega = value * omega_max, omega_max = sqrt(lambda_{m-1}) the highest
+ *   computed frequency (HighestFrequency).
+ * - HarmonicIndex: omega = the frequency of harmonic `value` (HarmonicFrequency).
+ * In both relative units Time is in units of 1 / lambda_1, lambda_1 the first non-zero
+ * eigenvalue: Time 1 damps the lowest non-constant harmonic by exp(-1), whatever the size of
+ * the model and the number of harmonics computed. Transition and Gain have no units.
+ */
+enum class FrequencyUnits
+{
+  Absolute = 0,
+  FractionOfHighest = 1,
+  HarmonicIndex = 2
+};
+
+/**
+ * The highest computed frequency omega_max = sqrt(max(lambda_{m-1}, 0)).
+ * \param lambda Eigenvalues, ascending, length m.
+ * \return omega_max, 0 for an empty lambda.
+ */
+double HighestFrequency(const Vector& lambda);
+
+/**
+ * The frequency of harmonic `index`: sqrt(max(lambda_k, 0)) for an integer index k, linear in
+ * between (so that a slider moves the cutoff continuously); indices beyond m - 1 give omega_max.
+ * \param lambda Eigenvalues, ascending, length m >= 1.
+ * \param index >= 0.
+ * \throws InvalidInput for a negative or non-finite index or an empty lambda.
+ */
+double HarmonicFrequency(const Vector& lambda, double index);
+
+/**
+ * The parameters p, given in `units`, with their frequencies and time in absolute units (see
+ * FrequencyUnits). p is validated first, in its own units (a negative cutoff is refused whatever
+ * the units).
+ * \param lambda Eigenvalues of the basis, ascending, length m >= 1.
+ * \param firstNonZeroEigenvalue lambda_1 of the relative time unit; 0 when the basis has no
+ *        non-constant harmonic, where a relative Time becomes 0 (nothing to diffuse).
+ * \throws InvalidInput as Gain, and as HarmonicFrequency.
+ */
+FilterParameters ToAbsoluteUnits(const FilterParameters& p, FrequencyUnits units,
+  const Vector& lambda, double firstNonZeroEigenvalue);
+
+/**
  * Nyquist frequency pi / h of a mesh whose mean edge length is h = edgeLengthSum / edgeCount:
  * the highest frequency its sampling can carry, in the units of omega = sqrt(lambda). The one
  * home of that formula. Taking the sums rather than the mesh lets the pieces of a distributed

@@ -74,6 +74,7 @@ struct Downstream
     this->Transform->GetPointDataArraySelection()->EnableArray("Height");
     this->Filter->SetInputConnection(this->Transform->GetOutputPort());
     this->Filter->SetFilterKindToBandStop();
+    this->Filter->SetCutoffUnitsToAbsoluteFrequency();
     this->Filter->SetCutoff(3.0);
     this->Filter->SetUpperCutoff(5.0);
     this->Transform->AddObserver(vtkCommand::ErrorEvent, this->Errors);

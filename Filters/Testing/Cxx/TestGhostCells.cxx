@@ -128,6 +128,7 @@ struct Pipeline
     this->Basis->SetNumberOfHarmonics(Harmonics);
     this->Transform->SetInputConnection(this->Basis->GetOutputPort());
     this->Filter->SetInputConnection(this->Transform->GetOutputPort());
+    this->Filter->SetCutoffUnitsToAbsoluteFrequency();
     this->Filter->SetCutoff(3.0);
     this->Descriptors->SetInputConnection(this->Basis->GetOutputPort());
     this->Filter->Update();

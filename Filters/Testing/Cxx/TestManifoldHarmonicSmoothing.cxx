@@ -98,6 +98,7 @@ bool TestSameAsThreeStages(vtkPolyData* input)
     basis->GetOutput()->GetFieldData()->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetCutoffUnitsToAbsoluteFrequency();
   filter->SetCutoff(0.6 * std::sqrt(lambda->GetTuple1(29)));
   filter->Update();
 
@@ -161,6 +162,7 @@ bool TestSpectrumTable(vtkPolyData* input)
   transform->SetInputConnection(basis->GetOutputPort());
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
+  filter->SetCutoffUnitsToAbsoluteFrequency();
   filter->SetCutoff(3.0);
   filter->Update();
   vtkTable* spectrum = filter->GetSpectrumOutput();

@@ -911,6 +911,7 @@ bool TestDownstream()
     vtkNew<vtkSpectralFilter> filter;
     filter->SetInputConnection(transform->GetOutputPort());
     filter->SetFilterKindToLowPass();
+    filter->SetCutoffUnitsToAbsoluteFrequency();
     filter->SetCutoff(1e9);
     filter->ReplaceInputOff();
     vtkNew<vtkTest::ErrorObserver> messages;

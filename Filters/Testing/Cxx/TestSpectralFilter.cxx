@@ -3,8 +3,9 @@
 // Checks of vtkSpectralFilter: identity transfer, exact round trip with m = n, a float basis
 // against a double one, linearity, a low-pass of a noisy sphere against
 // vtkWindowedSincPolyDataFilter, colour and normal arrays, heat diffusion limits, re-execution of
-// the filter alone when its parameters change, and the errors and warnings of inputs that lack
-// the basis or the coefficients.
+// the filter alone when its parameters change, the errors and warnings of inputs that lack
+// the basis or the coefficients, and the cutoff units: the default cutoff at any scale, relative
+// units against the absolute cutoffs they name, negative cutoffs, cutoffs outside the spectrum.
 
 #include "vtkSpectralFilter.h"
 
@@ -41,6 +42,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -80,6 +82,8 @@ struct Pipeline
       this->Transform->GetPointDataArraySelection()->EnableArray(name.c_str());
     }
     this->Filter->SetInputConnection(this->Transform->GetOutputPort());
+    // The cutoffs of these tests are frequencies (radians per unit length).
+    this->Filter->SetCutoffUnitsToAbsoluteFrequency();
   }
   vtkPolyData* Run()
   {
@@ -628,6 +632,7 @@ bool TestChaining()
   vtkNew<vtkSpectralFilter> second;
   second->SetInputConnection(pipeline.Filter->GetOutputPort());
   second->SetFilterKindToHeatDiffusion();
+  second->SetCutoffUnitsToAbsoluteFrequency();
   second->SetTime(0.02);
   second->ReinjectHighFrequenciesOff();
   second->ReplaceInputOn();
@@ -1017,6 +1022,357 @@ bool TestMissingInputs()
       "the error does not say that the input has no polygons");
   return ok;
 }
+
+//------------------------------------------------------------------------------
+// A sphere of radius `scale` (24 x 16, double points) whose points are moved along the radius by
+// up to 2% of it: noise for a low pass to remove.
+vtkSmartPointer<vtkPolyData> MakeNoisySphere(double scale)
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  vtkNew<vtkMinimalStandardRandomSequence> random;
+  random->SetSeed(11);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    const double radial = scale * (1.0 + 0.02 * (2.0 * random->GetValue() - 1.0));
+    random->Next();
+    const double norm = vtkMath::Norm(p);
+    points->InsertNextPoint(radial * p[0] / norm, radial * p[1] / norm, radial * p[2] / norm);
+  }
+  mesh->SetPoints(points);
+  return mesh;
+}
+
+//------------------------------------------------------------------------------
+// Basis (36 harmonics: the complete clusters l <= 5 of the sphere), transform and a filter with
+// its default settings on `mesh`: the filtered points.
+vtkSmartPointer<vtkDataArray> DefaultLowPass(vtkPolyData* mesh)
+{
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputData(mesh);
+  basis->SetNumberOfHarmonics(36);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputConnection(basis->GetOutputPort());
+  vtkNew<vtkSpectralFilter> filter;
+  filter->SetInputConnection(transform->GetOutputPort());
+  filter->Update();
+  vtkSmartPointer<vtkDataArray> points =
+    vtk::TakeSmartPointer(filter->GetOutput()->GetPoints()->GetData()->NewInstance());
+  points->DeepCopy(filter->GetOutput()->GetPoints()->GetData());
+  return points;
+}
+
+//------------------------------------------------------------------------------
+// The default cutoff means the same on every model: a noisy sphere scaled by 1e-6, 1 and 1e6 is
+// smoothed alike (up to the scale), neither collapsed to its centroid nor left unchanged. (The
+// frequencies scale as 1 / size, so no absolute cutoff can do this.)
+bool TestDefaultCutoffAtAnyScale()
+{
+  bool ok = true;
+  vtkSmartPointer<vtkPolyData> unit = MakeNoisySphere(1.0);
+  vtkSmartPointer<vtkDataArray> reference = DefaultLowPass(unit);
+  // At scale 1: smoothed (the radial noise of up to 0.02 mostly removed), not collapsed.
+  double noiseBefore = 0.0;
+  double noiseAfter = 0.0;
+  for (vtkIdType i = 0; i < unit->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    double q[3];
+    unit->GetPoint(i, p);
+    reference->GetTuple(i, q);
+    noiseBefore = std::max(noiseBefore, std::abs(vtkMath::Norm(p) - 1.0));
+    noiseAfter = std::max(noiseAfter, std::abs(vtkMath::Norm(q) - 1.0));
+  }
+  std::cout << "Default low pass of a noisy unit sphere: radial noise " << noiseBefore << " -> "
+            << noiseAfter << std::endl;
+  ok &= Check(noiseAfter < 0.75 * noiseBefore && noiseAfter > 1e-4,
+    "the default filter does not smooth a noisy unit sphere (radial noise " +
+      std::to_string(noiseBefore) + " -> " + std::to_string(noiseAfter) + ")");
+  for (double scale : { 1e-6, 1e6 })
+  {
+    vtkSmartPointer<vtkDataArray> scaled = DefaultLowPass(MakeNoisySphere(scale));
+    vtkNew<vtkDoubleArray> back;
+    back->SetNumberOfComponents(3);
+    back->SetNumberOfTuples(scaled->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < scaled->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        back->SetComponent(i, c, scaled->GetComponent(i, c) / scale);
+      }
+    }
+    const double difference = RelativeDifference(back, reference);
+    std::cout << "Default low pass at scale " << scale << " against scale 1: " << difference
+              << std::endl;
+    ok &= Check(difference < 1e-6,
+      "the default filter at scale " + std::to_string(scale) +
+        " differs from scale 1 by " + std::to_string(difference));
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Relative units are the absolute cutoffs they name: harmonic index k is omega_k, a fractional
+// index lies between two harmonics, a fraction f is f omega_max, a relative heat time T is
+// T / lambda_1, band edges alike; and the slider ranges follow the units.
+bool TestCutoffUnits()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Pipeline pipeline(mesh, 30, { "A" });
+  pipeline.Run();
+  vtkDataArray* eigenvalues = pipeline.Basis->GetOutput()->GetFieldData()->GetArray(
+    vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  const auto omega = [eigenvalues](int k) { return std::sqrt(eigenvalues->GetTuple1(k)); };
+  const double lambda1 = eigenvalues->GetTuple1(1);
+  vtkSpectralFilter* filter = pipeline.Filter;
+  // Runs the filter in `units` with (cutoff, upper, time), then in absolute frequencies with
+  // (absolute, absoluteUpper, absoluteTime), and compares the points and the filtered A.
+  const auto same = [&pipeline, filter](int units, double cutoff, double upper, double time, double absolute,
+                      double absoluteUpper, double absoluteTime, const std::string& what)
+  {
+    filter->SetCutoffUnits(units);
+    filter->SetCutoff(cutoff);
+    filter->SetUpperCutoff(upper);
+    filter->SetTime(time);
+    vtkNew<vtkPolyData> relative;
+    relative->DeepCopy(pipeline.Run());
+    filter->SetCutoffUnitsToAbsoluteFrequency();
+    filter->SetCutoff(absolute);
+    filter->SetUpperCutoff(absoluteUpper);
+    filter->SetTime(absoluteTime);
+    vtkPolyData* output = pipeline.Run();
+    const double points =
+      RelativeDifference(relative->GetPoints()->GetData(), output->GetPoints()->GetData());
+    const double a = RelativeDifference(relative->GetPointData()->GetArray("A_Filtered"),
+      output->GetPointData()->GetArray("A_Filtered"));
+    std::cout << "  " << what << ": points " << points << ", A " << a << std::endl;
+    return Check(points <= 1e-14 && a <= 1e-14, what + " is not the absolute cutoff it names");
+  };
+  std::cout << "Relative units against the absolute cutoffs they name:" << std::endl;
+  bool ok = true;
+  filter->SetFilterKindToLowPass();
+  ok &= same(vtkSpectralFilter::HARMONIC_INDEX, 10, 1, 0, omega(10), 1, 0, "harmonic index 10");
+  ok &= same(vtkSpectralFilter::HARMONIC_INDEX, 10.25, 1, 0, 0.75 * omega(10) + 0.25 * omega(11),
+    1, 0, "harmonic index 10.25");
+  ok &= same(vtkSpectralFilter::FRACTION_OF_HIGHEST, 0.4, 1, 0, 0.4 * omega(29), 1, 0,
+    "fraction 0.4");
+  filter->SetFilterKindToBandPass();
+  ok &= same(vtkSpectralFilter::HARMONIC_INDEX, 4, 15, 0, omega(4), omega(15), 0,
+    "band of harmonics [4, 15]");
+  ok &= same(vtkSpectralFilter::FRACTION_OF_HIGHEST, 0.3, 0.7, 0, 0.3 * omega(29),
+    0.7 * omega(29), 0, "band of fractions [0.3, 0.7]");
+  filter->SetFilterKindToHeatDiffusion();
+  ok &= same(vtkSpectralFilter::FRACTION_OF_HIGHEST, 1, 1, 0.3, 1, 1, 0.3 / lambda1,
+    "relative heat time 0.3");
+  ok &= same(vtkSpectralFilter::HARMONIC_INDEX, 1, 1, 0.3, 1, 1, 0.3 / lambda1,
+    "relative heat time 0.3 (harmonic units)");
+  // The sliders in each unit.
+  const auto ranges = [&pipeline, filter](
+                        int units, double frequency, double time, const std::string& what)
+  {
+    filter->SetCutoffUnits(units);
+    pipeline.Run();
+    const double* f = filter->GetFrequencyRange();
+    const double* t = filter->GetTimeRange();
+    std::cout << "  slider ranges, " << what << ": [" << f[0] << ", " << f[1] << "], [" << t[0]
+              << ", " << t[1] << "]" << std::endl;
+    return Check(f[0] == 0.0 && std::abs(f[1] - frequency) <= 1e-12 * frequency && t[0] == 0.0 &&
+        std::abs(t[1] - time) <= 1e-12 * time,
+      "slider ranges in " + what);
+  };
+  ok &= ranges(vtkSpectralFilter::ABSOLUTE_FREQUENCY, omega(29), 4.0 / lambda1, "frequencies");
+  ok &= ranges(vtkSpectralFilter::FRACTION_OF_HIGHEST, 1.0, 4.0, "fractions");
+  ok &= ranges(vtkSpectralFilter::HARMONIC_INDEX, 29.0, 4.0, "harmonic indices");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// A basis (sphere, m = 20), its transform and a filter with an observer of its errors and
+// warnings, in the filter's default units.
+struct Observed
+{
+  vtkNew<vtkManifoldHarmonicBasis> Basis;
+  vtkNew<vtkManifoldHarmonicTransform> Transform;
+  vtkNew<vtkSpectralFilter> Filter;
+  vtkNew<vtkTest::ErrorObserver> Messages;
+  vtkNew<vtkTest::ErrorObserver> ExecutiveErrors;
+
+  explicit Observed(vtkPolyData* mesh, int harmonics = 20)
+  {
+    this->Basis->SetInputData(mesh);
+    this->Basis->SetNumberOfHarmonics(harmonics);
+    this->Transform->SetInputConnection(this->Basis->GetOutputPort());
+    this->Filter->SetInputConnection(this->Transform->GetOutputPort());
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
+    // The executive's report of a failed execution (the filter's own error is in Messages).
+    this->Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->ExecutiveErrors);
+    this->Transform->Update();
+  }
+  /// Whether the filter succeeded; the messages are those of this execution.
+  bool Run()
+  {
+    this->Messages->Clear();
+    return this->Filter->GetExecutive()->Update() != 0;
+  }
+  /// omega_k of the basis.
+  double Omega(int k)
+  {
+    return std::sqrt(this->Basis->GetOutput()
+                       ->GetFieldData()
+                       ->GetArray(vtkManifoldHarmonicBasis::EigenvaluesArrayName())
+                       ->GetTuple1(k));
+  }
+};
+
+//------------------------------------------------------------------------------
+// How a number appears in the filter's messages (the default stream format).
+std::string Printed(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+//------------------------------------------------------------------------------
+// A negative cutoff, upper cutoff or time is an error that fails the filter (not a value
+// clamped to 0 in silence).
+bool TestNegativeCutoffs()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Observed run(mesh);
+  bool ok = true;
+  const auto refused = [&run](const std::string& what)
+  {
+    const bool succeeded = run.Run();
+    std::cout << "Expected error (" << what << "):" << AfterLocation(run.Messages->GetErrorMessage());
+    return Check(!succeeded && run.Messages->GetError() &&
+        run.Messages->GetErrorMessage().find("-1") != std::string::npos,
+      what + " is not an error naming the value");
+  };
+  run.Filter->SetCutoff(-1.0);
+  ok &= Check(run.Filter->GetCutoff() == -1.0, "SetCutoff(-1) changed the value");
+  ok &= refused("Cutoff -1");
+  run.Filter->SetCutoff(0.5);
+  run.Filter->SetFilterKindToBandPass();
+  run.Filter->SetCutoff(-1.0);
+  ok &= refused("band pass from Cutoff -1");
+  run.Filter->SetCutoff(0.0);
+  run.Filter->SetUpperCutoff(-1.0);
+  ok &= refused("band pass up to UpperCutoff -1");
+  run.Filter->SetFilterKindToHeatDiffusion();
+  run.Filter->SetTime(-1.0);
+  ok &= refused("Time -1");
+  // A negative value the kind does not use is no error.
+  run.Filter->SetTime(0.5);
+  ok &= Check(run.Run() && !run.Messages->GetError(),
+    "heat diffusion fails on an UpperCutoff it does not use");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// A cutoff below the first non-zero frequency or above the highest computed one is a warning
+// that names both frequencies and what happens; so is a basis of constant harmonics only.
+bool TestCutoffsOutsideTheSpectrum()
+{
+  vtkSmartPointer<vtkPolyData> mesh = MakeSphere(24, 16);
+  Observed run(mesh);
+  bool ok = true;
+  const double first = run.Omega(1);
+  const double highest = run.Omega(19);
+  const auto warns = [&run](const std::vector<std::string>& parts, const std::string& what)
+  {
+    const bool succeeded = run.Run();
+    const std::string message = run.Messages->GetWarningMessage();
+    std::cout << "Expected warning (" << what << "):" << AfterLocation(message);
+    bool all = succeeded && !run.Messages->GetError();
+    for (const std::string& part : parts)
+    {
+      all &= Check(message.find(part) != std::string::npos, what + ": no '" + part + "'");
+    }
+    return Check(all, what + " does not warn as it should");
+  };
+  // Default units (a fraction of the highest computed frequency).
+  run.Filter->SetCutoff(1e-3);
+  ok &= warns({ "Cutoff 0.001", Printed(1e-3 * highest), "below the first non-zero frequency " +
+                  Printed(first),
+                "centroid" },
+    "low pass below the first non-zero frequency");
+  run.Filter->SetCutoff(1.5);
+  ok &= warns({ "Cutoff 1.5", Printed(1.5 * highest),
+                "above the highest computed frequency " + Printed(highest) },
+    "low pass above the highest computed frequency");
+  run.Filter->SetCutoffUnitsToAbsoluteFrequency();
+  run.Filter->SetFilterKindToBandPass();
+  run.Filter->SetCutoff(0.5 * (first + highest));
+  run.Filter->SetUpperCutoff(2.0 * highest);
+  ok &= warns({ "UpperCutoff " + Printed(2.0 * highest), "above the highest computed frequency" },
+    "band pass beyond the highest computed frequency");
+  // Inside the spectrum: no warning.
+  run.Filter->SetFilterKindToLowPass();
+  run.Filter->SetCutoff(0.5 * (first + highest));
+  ok &= Check(run.Run() && !run.Messages->GetWarning() && !run.Messages->GetError(),
+    "a cutoff inside the spectrum warns: " + run.Messages->GetWarningMessage());
+
+  // 40 separate triangles: every harmonic is constant on its triangle, all eigenvalues are zero.
+  vtkNew<vtkPolyData> debris;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> triangles;
+  for (int t = 0; t < 40; ++t)
+  {
+    const double x = 2.0 * t;
+    const vtkIdType ids[3] = { points->InsertNextPoint(x, 0, 0),
+      points->InsertNextPoint(x + 1, 0, 0), points->InsertNextPoint(x, 1, 0) };
+    triangles->InsertNextCell(3, ids);
+  }
+  debris->SetPoints(points);
+  debris->SetPolys(triangles);
+  vtkNew<vtkTest::ErrorObserver> basisWarnings; // the basis's own, about the components
+  Observed constant(debris, 10);
+  constant.Basis->AddObserver(vtkCommand::WarningEvent, basisWarnings);
+  constant.Basis->Modified();
+  const bool succeeded = constant.Run();
+  std::cout << "Expected warning (constant harmonics only):"
+            << AfterLocation(constant.Messages->GetWarningMessage());
+  ok &= Check(succeeded &&
+      constant.Messages->GetWarningMessage().find("no non-constant harmonic") != std::string::npos,
+    "a basis of constant harmonics only does not warn");
+
+  // Rounding-sized eigenvalues (set by hand: what a machine may return for the zero ones) that
+  // a tiny cutoff splits: the components of the harmonics above it would go to the origin.
+  vtkNew<vtkPolyData> rounded;
+  rounded->ShallowCopy(constant.Transform->GetOutput());
+  vtkNew<vtkDoubleArray> tiny;
+  tiny->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
+  for (int k = 0; k < 10; ++k)
+  {
+    tiny->InsertNextValue(1e-12 * k);
+  }
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(rounded->GetFieldData());
+  fields->AddArray(tiny); // replaces the basis's eigenvalues
+  rounded->SetFieldData(fields);
+  vtkNew<vtkSpectralFilter> split;
+  vtkNew<vtkTest::ErrorObserver> splitMessages;
+  split->AddObserver(vtkCommand::WarningEvent, splitMessages);
+  split->AddObserver(vtkCommand::ErrorEvent, splitMessages);
+  split->SetInputData(rounded);
+  split->SetCutoffUnitsToAbsoluteFrequency();
+  split->SetCutoff(std::sqrt(4.5e-12));
+  split->SetTransition(0.0);
+  split->Update();
+  std::cout << "Expected warning (rounding-sized eigenvalues split by the cutoff):"
+            << AfterLocation(splitMessages->GetWarningMessage());
+  ok &= Check(!splitMessages->GetError() &&
+      splitMessages->GetWarningMessage().find("5 of the 10 constant harmonic(s)") !=
+        std::string::npos &&
+      splitMessages->GetWarningMessage().find("towards the origin") != std::string::npos,
+    "a cutoff among rounding-sized eigenvalues does not warn that components go to the origin");
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -1040,5 +1396,9 @@ int TestSpectralFilter(int, char*[])
   ok &= TestInteractive();
   ok &= TestMissingInputs();
   ok &= TestSliderRanges();
+  ok &= TestDefaultCutoffAtAnyScale();
+  ok &= TestCutoffUnits();
+  ok &= TestNegativeCutoffs();
+  ok &= TestCutoffsOutsideTheSpectrum();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -232,6 +232,7 @@ bool TestTetrahedra()
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
   filter->SetFilterKindToLowPass();
+  filter->SetCutoffUnitsToAbsoluteFrequency();
   filter->SetCutoff(std::sqrt(CubeSpectrum(1, 4).back()));
   filter->Update();
   vtkUnstructuredGrid* filtered = vtkUnstructuredGrid::SafeDownCast(filter->GetOutputDataObject(0));
@@ -502,6 +503,7 @@ bool TestPointClouds()
   vtkNew<vtkSpectralFilter> filter;
   filter->SetInputConnection(transform->GetOutputPort());
   filter->SetFilterKindToLowPass();
+  filter->SetCutoffUnitsToAbsoluteFrequency();
   filter->SetCutoff(4.0);
   filter->Update();
   const double before = radialError(noisy);
