@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkManifoldHarmonicsParallel.h"
 
+#include "vtkBoundingBox.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCommunicator.h"
@@ -92,38 +93,35 @@ void ReceiveArray(vtkMultiProcessController* controller, vtkDataArray* array, in
 }
 
 //------------------------------------------------------------------------------
-// Adds one piece to the merged mesh: its points through the point merger, its triangles
-// renumbered. Records the piece's point map and the owner of each point: the lowest rank that
-// holds it as its own (not a ghost copy), or the lowest rank that holds it if none does.
-// `ownerIsGhost[j]` tells whether the owner of merged point j so far holds it as a ghost.
-void MergePiece(int rank,
-  vtkDoubleArray* points,
-  vtkUnsignedCharArray* owned,
-  vtkIdTypeArray* triangles,
-  vtkPointLocator* merger,
-  vtkCellArray* mergedTriangles,
-  std::vector<bool>& ownerIsGhost,
-  vtkManifoldHarmonicsParallel::MergedMesh& merged)
+bool Finite(const double x[3])
 {
-  std::vector<vtkIdType>& map = merged.PointMaps[rank];
-  map.resize(points->GetNumberOfTuples());
-  const bool hasOwnership = owned->GetNumberOfTuples() == points->GetNumberOfTuples();
-  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+}
+
+//------------------------------------------------------------------------------
+// The bounding box of the finite points of `xyz` (n by 3); zeros if there are none.
+void FiniteBounds(const double* xyz, vtkIdType n, double bounds[6])
+{
+  vtkBoundingBox box;
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    double x[3];
-    points->GetTypedTuple(i, x);
-    const bool ghost = hasOwnership && owned->GetValue(i) == 0;
-    if (merger->InsertUniquePoint(x, map[i]))
+    if (Finite(xyz + 3 * i))
     {
-      merged.Owner.push_back(rank);
-      ownerIsGhost.push_back(ghost);
-    }
-    else if (ownerIsGhost[map[i]] && !ghost)
-    {
-      merged.Owner[map[i]] = rank;
-      ownerIsGhost[map[i]] = false;
+      box.AddPoint(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
     }
   }
+  if (box.IsValid())
+  {
+    box.GetBounds(bounds);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Adds the triangles of one piece to the merged mesh, renumbered by the piece's point map.
+void AddTriangles(vtkIdTypeArray* triangles,
+  const std::vector<vtkIdType>& map,
+  vtkCellArray* mergedTriangles)
+{
   for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
   {
     const vtkIdType ids[3] = { map[triangles->GetTypedComponent(t, 0)],
@@ -155,7 +153,7 @@ void PieceRows(int rank,
       harmonics.row(j).data(), harmonics.row(j).data() + m, piece.Harmonics->GetPointer(i * m));
     piece.Mass->SetValue(i, mass[j]);
     piece.Duplicates->SetValue(
-      i, merged.Owner[j] == rank ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
+      i, merged.Counted[rank][i] ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
   }
 }
 
@@ -274,7 +272,66 @@ int CountRanks(vtkMultiProcessController* controller, bool hasData)
 }
 
 //------------------------------------------------------------------------------
-MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* piece)
+Welding WeldPoints(const double* xyz,
+  vtkIdType n,
+  const double* bounds,
+  double tolerance,
+  const std::vector<unsigned char>& owned)
+{
+  double box[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  if (bounds)
+  {
+    std::copy(bounds, bounds + 6, box);
+  }
+  else
+  {
+    FiniteBounds(xyz, n, box);
+  }
+  Welding welding;
+  welding.Map.resize(static_cast<std::size_t>(n));
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkPointLocator> locator;
+  const double diagonal = std::sqrt(
+    vtkMath::Distance2BetweenPoints(std::array<double, 3>{ box[0], box[2], box[4] }.data(),
+      std::array<double, 3>{ box[1], box[3], box[5] }.data()));
+  locator->SetTolerance(tolerance * std::max(diagonal, 1e-300));
+  locator->InitPointInsertion(points, box, std::max<vtkIdType>(n, 1));
+  const bool hasOwnership = static_cast<vtkIdType>(owned.size()) == n;
+  std::vector<bool> countedIsOwned;
+  // The welded point of each point the locator holds (non-finite points stay out of it).
+  std::vector<vtkIdType> weldedOf;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    vtkIdType& j = welding.Map[i];
+    const bool isOwned = !hasOwnership || owned[i] != 0;
+    vtkIdType located = -1;
+    if (Finite(xyz + 3 * i) && !locator->InsertUniquePoint(xyz + 3 * i, located))
+    {
+      // A copy of an earlier point: it counts if it is the first owned one.
+      j = weldedOf[located];
+      if (isOwned && !countedIsOwned[j])
+      {
+        welding.Counted[j] = i;
+        countedIsOwned[j] = true;
+      }
+      continue;
+    }
+    j = static_cast<vtkIdType>(welding.First.size());
+    if (located >= 0)
+    {
+      weldedOf.push_back(j);
+    }
+    welding.First.push_back(i);
+    welding.Counted.push_back(i);
+    countedIsOwned.push_back(isOwned);
+  }
+  return welding;
+}
+
+//------------------------------------------------------------------------------
+MergedMesh GatherAndMerge(
+  vtkMultiProcessController* controller, vtkPolyData* piece, double tolerance)
 {
   MergedMesh merged;
   vtkNew<vtkDoubleArray> points;
@@ -290,54 +347,59 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
     return merged;
   }
 
+  // All points in rank order, with their ownership (1 where a piece has no ghost array).
   const int size = controller->GetNumberOfProcesses();
-  std::vector<vtkSmartPointer<vtkDoubleArray>> allPoints(size);
-  std::vector<vtkSmartPointer<vtkUnsignedCharArray>> allOwned(size);
   std::vector<vtkSmartPointer<vtkIdTypeArray>> allTriangles(size);
-  allPoints[0] = points;
-  allOwned[0] = owned;
-  allTriangles[0] = triangles;
-  double bounds[6] = {
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN
-  };
+  std::vector<vtkIdType> offsets(size + 1, 0);
+  vtkNew<vtkDoubleArray> allPoints;
+  allPoints->SetNumberOfComponents(3);
+  std::vector<unsigned char> allOwned;
   for (int r = 0; r < size; ++r)
   {
+    vtkSmartPointer<vtkDoubleArray> rankPoints = points;
+    vtkSmartPointer<vtkUnsignedCharArray> rankOwned = owned;
+    allTriangles[r] = triangles;
     if (r > 0)
     {
-      allPoints[r] = vtkSmartPointer<vtkDoubleArray>::New();
-      allPoints[r]->SetNumberOfComponents(3);
-      allOwned[r] = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      rankPoints = vtkSmartPointer<vtkDoubleArray>::New();
+      rankPoints->SetNumberOfComponents(3);
+      rankOwned = vtkSmartPointer<vtkUnsignedCharArray>::New();
       allTriangles[r] = vtkSmartPointer<vtkIdTypeArray>::New();
       allTriangles[r]->SetNumberOfComponents(3);
-      ReceiveArray(controller, allPoints[r], r, PieceTag);
-      ReceiveArray(controller, allOwned[r], r, PieceTag);
+      ReceiveArray(controller, rankPoints, r, PieceTag);
+      ReceiveArray(controller, rankOwned, r, PieceTag);
       ReceiveArray(controller, allTriangles[r], r, PieceTag);
     }
-    for (int c = 0; c < 3 && allPoints[r]->GetNumberOfTuples() > 0; ++c)
+    const vtkIdType n = rankPoints->GetNumberOfTuples();
+    offsets[r + 1] = offsets[r] + n;
+    const bool hasOwnership = rankOwned->GetNumberOfTuples() == n;
+    for (vtkIdType i = 0; i < n; ++i)
     {
-      const double* range = allPoints[r]->GetRange(c);
-      bounds[2 * c] = std::min(bounds[2 * c], range[0]);
-      bounds[2 * c + 1] = std::max(bounds[2 * c + 1], range[1]);
+      allPoints->InsertNextTuple(i, rankPoints);
+      allOwned.push_back(hasOwnership ? rankOwned->GetValue(i) : 1);
     }
   }
-
-  // Merge within SeamTolerance of the bounding box diagonal, not exactly. The first piece
-  // holding a point gives its coordinates.
+  // The first copy of a merged point gives its coordinates.
+  const Welding welding = WeldPoints(
+    allPoints->GetPointer(0), allPoints->GetNumberOfTuples(), nullptr, tolerance, allOwned);
   vtkNew<vtkPoints> mergedPoints;
   mergedPoints->SetDataTypeToDouble();
-  vtkNew<vtkPointLocator> merger;
-  const double diagonal = std::sqrt(
-    vtkMath::Distance2BetweenPoints(std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
-      std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
-  merger->SetTolerance(vtkManifoldHarmonicsParallel::SeamTolerance * std::max(diagonal, 1e-300));
-  merger->InitPointInsertion(mergedPoints, bounds);
+  mergedPoints->SetNumberOfPoints(static_cast<vtkIdType>(welding.First.size()));
+  for (std::size_t j = 0; j < welding.First.size(); ++j)
+  {
+    mergedPoints->SetPoint(static_cast<vtkIdType>(j), allPoints->GetTuple3(welding.First[j]));
+  }
   vtkNew<vtkCellArray> mergedTriangles;
   merged.PointMaps.resize(size);
-  std::vector<bool> ownerIsGhost;
+  merged.Counted.resize(size);
   for (int r = 0; r < size; ++r)
   {
-    MergePiece(
-      r, allPoints[r], allOwned[r], allTriangles[r], merger, mergedTriangles, ownerIsGhost, merged);
+    for (vtkIdType g = offsets[r]; g < offsets[r + 1]; ++g)
+    {
+      merged.PointMaps[r].push_back(welding.Map[g]);
+      merged.Counted[r].push_back(welding.Counted[welding.Map[g]] == g);
+    }
+    AddTriangles(allTriangles[r], merged.PointMaps[r], mergedTriangles);
   }
   merged.Surface = vtkSmartPointer<vtkPolyData>::New();
   merged.Surface->SetPoints(mergedPoints);
