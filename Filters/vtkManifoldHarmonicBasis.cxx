@@ -290,8 +290,8 @@ vtkSmartPointer<vtkUnsignedCharArray> WeldedDuplicates(
   duplicates->SetNumberOfTuples(static_cast<vtkIdType>(welding.Map.size()));
   for (vtkIdType i = 0; i < duplicates->GetNumberOfTuples(); ++i)
   {
-    duplicates->SetValue(i,
-      welding.Counted[welding.Map[i]] == i ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
+    duplicates->SetValue(
+      i, welding.Counted[welding.Map[i]] == i ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
   }
   return duplicates;
 }
@@ -785,8 +785,8 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
     output->ShallowCopy(input);
     ::AddBasisArrays(output,
       basis.Pairs,
-      ::Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(),
-        numPts),
+      ::Targets(
+        basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
       basis.LumpedMass,
       this->BasisPrecision == FLOAT);
     if (welding.Merged())

@@ -44,12 +44,14 @@ constexpr double SeamTolerance = 1e-12;
 
 /**
  * The seam rule of every path (serial, gather to process 0, SLEPc): which points are one point.
- * Points within `tolerance` times the diagonal of `bounds` of a point met before them (in the
- * order given) are merged into it (vtkPointLocator::InsertUniquePoint); `bounds` must hold all
- * finite points, nullptr means their bounding box. A point with a NaN or infinite coordinate
- * stays apart (the solver reports it if a cell uses it). The point that stands for a welded point in sums over points is its first copy that
- * `owned` marks (nonzero), or its first copy if none is marked (or `owned` is empty); the other
- * copies are flagged vtkManifoldHarmonicsGhosts::NotOwnedPointFlag so that they count zero times.
+ * A point within `tolerance` times the diagonal of `bounds` of the first copy of a welded point
+ * met before it (in the order given) is merged into the earliest such welded point; otherwise it
+ * starts a welded point of its own. `bounds` gives the diagonal (the same on every process),
+ * nullptr means the bounding box of the finite points. A point with a NaN or infinite coordinate
+ * stays apart (the solver reports it if a cell uses it). The point that stands for a welded point
+ * in sums over points is its first copy that `owned` marks (nonzero), or its first copy if none is
+ * marked (or `owned` is empty); the other copies are flagged
+ * vtkManifoldHarmonicsGhosts::NotOwnedPointFlag so that they count zero times.
  */
 struct Welding
 {
@@ -96,8 +98,9 @@ struct MergedMesh
  * (WeldPoints), in one piece or across pieces. \return the merged mesh on process 0, an empty
  * MergedMesh elsewhere.
  */
-MergedMesh GatherAndMerge(
-  vtkMultiProcessController* controller, vtkPolyData* piece, double tolerance);
+MergedMesh GatherAndMerge(vtkMultiProcessController* controller,
+  vtkPolyData* piece,
+  double tolerance);
 
 /// The rows of one process: harmonics (n_r by m), mass (n_r) and DUPLICATEPOINT flags (n_r) on
 /// the points another process owns.

@@ -16,8 +16,9 @@
  *    piece can hold: every process receives these seam points of all processes (O(sqrt n) per
  *    piece on a surface, O(n^(2/3)) in a volume, not the mesh) and merges them with the seam
  *    rule of every path, vtkManifoldHarmonicsParallel::WeldPoints (within SeamTolerance of the
- *    bounding box diagonal, in rank order, so every process finds the same merge). A point is owned by the lowest rank that holds it; each process
- *    numbers its owned points contiguously after those of the lower ranks.
+ *    bounding box diagonal, in rank order, so every process finds the same merge). A point is
+ *    owned by the lowest rank that holds it; each process numbers its owned points contiguously
+ *    after those of the lower ranks.
  * 2. Assembly. Each process computes the stiffness (cotan, or P1 for tetrahedra) and the mass
  *    (lumped or consistent) of its own cells with the core's formulas (Operators.h), in units
  *    of spectral::UnitScale

@@ -8,7 +8,8 @@
 //   arrays; every copy of a point gets the same harmonics and mass; each welded point counts
 //   once (the mass of the counted copies adds up to the sphere's area, and the transform's
 //   coefficients have the sphere's Gram matrix); smoothing, the spectral filter and the heat
-//   kernel signature give every copy the sphere's value at its point, so the seams stay closed.
+//   kernel signature give every copy the sphere's value at its point, so the seams stay closed;
+//   copies moved apart by less than SeamTolerance are welded, farther ones are not.
 // - WeldSeams off: today's behaviour, one component per triangle (all eigenvalues zero) and the
 //   warning about connected components.
 // The distributed case (2 and 3 processes, both solvers): Testing/ParaView/TestParallelManifold
@@ -82,13 +83,17 @@ vtkSmartPointer<vtkPolyData> MakeSoup(vtkPolyData* sphere, std::vector<vtkIdType
 }
 
 //------------------------------------------------------------------------------
-vtkSmartPointer<vtkPolyData> Basis(vtkPolyData* input, bool weld, std::string* warnings = nullptr)
+vtkSmartPointer<vtkPolyData> Basis(vtkPolyData* input,
+  bool weld,
+  std::string* warnings = nullptr,
+  double tolerance = 1e-12)
 {
   vtkNew<vtkTest::ErrorObserver> messages;
   vtkNew<vtkManifoldHarmonicBasis> basis;
   basis->AddObserver(vtkCommand::WarningEvent, messages);
   basis->SetNumberOfHarmonics(Harmonics);
   basis->SetWeldSeams(weld);
+  basis->SetSeamTolerance(tolerance);
   basis->SetInputData(input);
   basis->Update();
   if (warnings)
@@ -168,8 +173,8 @@ bool TestSpectrum(vtkPolyData* sphere, vtkPolyData* soup)
     std::ostringstream what;
     what << "welded soup eigenvalue " << k << " " << actual->GetTuple1(k) << " equals the sphere's "
          << expected->GetTuple1(k);
-    ok &= Check(std::abs(actual->GetTuple1(k) - expected->GetTuple1(k)) <= 1e-10 * largest,
-      what.str());
+    ok &=
+      Check(std::abs(actual->GetTuple1(k) - expected->GetTuple1(k)) <= 1e-10 * largest, what.str());
   }
   return ok;
 }
@@ -228,8 +233,8 @@ bool TestOutputKeepsInput(vtkPolyData* input, vtkPolyData* output)
     "the output has the soup's " + std::to_string(input->GetNumberOfPoints()) + " points");
   ok &= Check(output->GetNumberOfPolys() == input->GetNumberOfPolys(),
     "the output has the soup's " + std::to_string(input->GetNumberOfPolys()) + " triangles");
-  ok &= Check(output->GetPointData()->GetArray(TextureArray) ==
-      input->GetPointData()->GetArray(TextureArray),
+  ok &= Check(
+    output->GetPointData()->GetArray(TextureArray) == input->GetPointData()->GetArray(TextureArray),
     "the output keeps the soup's point arrays");
   return ok;
 }
@@ -276,9 +281,9 @@ bool TestTransform(vtkPolyData* sphere, vtkPolyData* soup)
     vtkNew<vtkManifoldHarmonicTransform> transform;
     transform->SetInputData(mesh);
     transform->Update();
-    vtkDataArray* c =
-      vtkPolyData::SafeDownCast(transform->GetOutputDataObject(0))->GetFieldData()->GetArray(
-        "Points_Coefficients");
+    vtkDataArray* c = vtkPolyData::SafeDownCast(transform->GetOutputDataObject(0))
+                        ->GetFieldData()
+                        ->GetArray("Points_Coefficients");
     if (!Check(c && c->GetNumberOfComponents() == 3, "coefficients of the coordinates"))
     {
       return false;
@@ -332,8 +337,9 @@ bool TestDownstream(vtkPolyData* sphereBasis,
   ok &= Check(smoothed[1]->GetNumberOfPoints() == soup->GetNumberOfPoints() &&
       IdenticalAtCopies(smoothed[1]->GetPoints()->GetData(), source, n),
     "smoothing gives every copy of a point the same coordinates");
-  ok &= Check(DifferenceAtCopies(smoothed[1]->GetPoints()->GetData(),
-                smoothed[0]->GetPoints()->GetData(), source, 1.0) < 1e-9,
+  ok &= Check(
+    DifferenceAtCopies(
+      smoothed[1]->GetPoints()->GetData(), smoothed[0]->GetPoints()->GetData(), source, 1.0) < 1e-9,
     "smoothing the soup moves each copy where smoothing the sphere moves its point");
 
   std::vector<vtkSmartPointer<vtkPolyData>> filtered;
@@ -351,8 +357,9 @@ bool TestDownstream(vtkPolyData* sphereBasis,
   }
   ok &= Check(IdenticalAtCopies(filtered[1]->GetPoints()->GetData(), source, n),
     "the spectral filter (re-injection on) gives every copy of a point the same coordinates");
-  ok &= Check(DifferenceAtCopies(filtered[1]->GetPoints()->GetData(),
-                filtered[0]->GetPoints()->GetData(), source, 1.0) < 1e-9,
+  ok &= Check(
+    DifferenceAtCopies(
+      filtered[1]->GetPoints()->GetData(), filtered[0]->GetPoints()->GetData(), source, 1.0) < 1e-9,
     "the spectral filter moves each copy where it moves the sphere's point");
 
   std::vector<vtkDataArray*> signatures;
@@ -371,6 +378,42 @@ bool TestDownstream(vtkPolyData* sphereBasis,
       DifferenceAtCopies(signatures[1], signatures[0], source, signatures[0]->GetRange(0)[1]) <
         1e-9,
     "the heat kernel signature of each copy is the sphere's at its point");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// SeamTolerance: every copy but the first of each point moved by half of 1e-4 of the diagonal
+// (in directions that vary from copy to copy) is welded with SeamTolerance 1e-4, onto the first
+// copy's coordinates: the sphere's spectrum; the default 1e-12 keeps the copies apart.
+bool TestTolerance(vtkPolyData* sphereBasis,
+  vtkPolyData* soup,
+  const std::vector<vtkIdType>& source)
+{
+  auto moved = vtkSmartPointer<vtkPolyData>::New();
+  moved->DeepCopy(soup);
+  const double step = 0.5e-4 * soup->GetLength() / std::sqrt(3.0);
+  std::vector<bool> seen(sphereBasis->GetNumberOfPoints(), false);
+  for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+  {
+    if (seen[source[i]])
+    {
+      double x[3];
+      moved->GetPoint(i, x);
+      for (int d = 0; d < 3; ++d)
+      {
+        x[d] += ((i >> d) & 1 ? step : -step) * (d == 2 && i % 3 == 0 ? 0.5 : 1.0);
+      }
+      moved->GetPoints()->SetPoint(i, x);
+    }
+    seen[source[i]] = true;
+  }
+  std::string warnings;
+  bool ok = TestSpectrum(sphereBasis, Basis(moved, true, &warnings, 1e-4));
+  ok &= Check(warnings.find("connected components") == std::string::npos,
+    "copies 0.5e-4 of the diagonal apart are one point with SeamTolerance 1e-4: " + warnings);
+  Basis(moved, true, &warnings);
+  ok &= Check(warnings.find("connected components") != std::string::npos,
+    "copies 0.5e-4 of the diagonal apart stay apart with the default SeamTolerance");
   return ok;
 }
 
@@ -414,15 +457,18 @@ int TestWeldSeams(int, char*[])
     "the welded soup is one component (no warning about components): " + warnings);
   ok &= TestSubspace(sphereBasis, soupBasis, source);
   ok &= TestOutputKeepsInput(soup, soupBasis);
-  ok &= Check(IdenticalAtCopies(soupBasis->GetPointData()->GetArray("ManifoldHarmonics"), source,
+  ok &= Check(IdenticalAtCopies(soupBasis->GetPointData()->GetArray("ManifoldHarmonics"),
+                source,
                 sphere->GetNumberOfPoints()),
     "every copy of a point has the same harmonics");
   ok &= Check(IdenticalAtCopies(soupBasis->GetPointData()->GetArray("ManifoldHarmonicsMass"),
-                source, sphere->GetNumberOfPoints()),
+                source,
+                sphere->GetNumberOfPoints()),
     "every copy of a point has the same mass");
   ok &= TestCountedOnce(sphereBasis, soupBasis);
   ok &= TestTransform(sphereBasis, soupBasis);
   ok &= TestDownstream(sphereBasis, soupBasis, sphere, soup, source);
+  ok &= TestTolerance(sphereBasis, soup, source);
   ok &= TestKeepSeamsOpen(soup);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
