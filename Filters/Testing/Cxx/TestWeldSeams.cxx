@@ -26,6 +26,7 @@
 #include "vtkCommand.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkNew.h"
@@ -440,6 +441,43 @@ bool TestKeepSeamsOpen(vtkPolyData* soup)
     "WeldSeams off: no point is flagged a duplicate");
   return ok;
 }
+
+//------------------------------------------------------------------------------
+// The smoothing passes WeldSeams on to its basis: off, the soup's 672 components leave only
+// constant harmonics, an error.
+bool TestSmoothingSwitch(vtkPolyData* soup)
+{
+  vtkNew<vtkTest::ErrorObserver> messages;
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
+  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
+  vtkNew<vtkTest::ErrorObserver> executive;
+  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+  smoothing->SetNumberOfHarmonics(Harmonics);
+  smoothing->WeldSeamsOff();
+  smoothing->SetInputData(soup);
+  smoothing->Update();
+  return Check(messages->GetErrorMessage().find("are all constant") != std::string::npos,
+    "smoothing with WeldSeams off: only constant harmonics on the soup, an error");
+}
+
+//------------------------------------------------------------------------------
+bool TestPrintSelf()
+{
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  std::ostringstream basisText;
+  std::ostringstream smoothingText;
+  basis->Print(basisText);
+  smoothing->Print(smoothingText);
+  bool ok = Check(basisText.str().find("Weld Seams: on") != std::string::npos &&
+      basisText.str().find("Seam Tolerance: 1e-12") != std::string::npos,
+    "the basis prints WeldSeams and SeamTolerance");
+  ok &= Check(smoothingText.str().find("WeldSeams: on") != std::string::npos &&
+      smoothingText.str().find("SeamTolerance: 1e-12") != std::string::npos,
+    "the smoothing prints WeldSeams and SeamTolerance");
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -470,5 +508,7 @@ int TestWeldSeams(int, char*[])
   ok &= TestDownstream(sphereBasis, soupBasis, sphere, soup, source);
   ok &= TestTolerance(sphereBasis, soup, source);
   ok &= TestKeepSeamsOpen(soup);
+  ok &= TestSmoothingSwitch(soup);
+  ok &= TestPrintSelf();
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
