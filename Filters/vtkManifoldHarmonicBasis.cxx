@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <iomanip>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -60,21 +61,31 @@ static_assert(
 namespace
 {
 //------------------------------------------------------------------------------
-// Writes row r of an #used by m column-major matrix into row Ids[r] of a row-major buffer with
-// m values per row (the layout of a vtkDoubleArray or vtkFloatArray with m components).
+// Where the rows of the core's result go: row Rows[e] of the result is written onto output
+// point Ids[e]. A row goes to several points when the point was welded (each copy gets it).
+struct RowsToPoints
+{
+  std::vector<int> Rows;
+  std::vector<vtkIdType> Ids;
+};
+
+//------------------------------------------------------------------------------
+// Writes row Rows[e] of an #used by m column-major matrix into row Ids[e] of a row-major buffer
+// with m values per row (the layout of a vtkDoubleArray or vtkFloatArray with m components).
 template<typename ValueT>
 struct ScatterRows
 {
   const spectral::DenseMatrix& Values;
-  const std::vector<int>& Ids;
+  const RowsToPoints& Targets;
   ValueT* Out;
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
     const vtkIdType m = static_cast<vtkIdType>(this->Values.cols());
-    for (vtkIdType r = begin; r < end; ++r)
+    for (vtkIdType e = begin; e < end; ++e)
     {
-      ValueT* row = this->Out + static_cast<vtkIdType>(this->Ids[r]) * m;
+      ValueT* row = this->Out + this->Targets.Ids[e] * m;
+      const Eigen::Index r = this->Targets.Rows[e];
       for (vtkIdType k = 0; k < m; ++k)
       {
         row[k] = static_cast<ValueT>(this->Values(r, k));
@@ -84,12 +95,12 @@ struct ScatterRows
 };
 
 //------------------------------------------------------------------------------
-// An n by m point data array (vtkDoubleArray or vtkFloatArray), zero on the points that Ids
-// does not reach.
+// An n by m point data array (vtkDoubleArray or vtkFloatArray), zero on the points that the
+// targets do not reach.
 template<typename ArrayT>
 vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
   const spectral::DenseMatrix& values,
-  const std::vector<int>& ids,
+  const RowsToPoints& targets,
   vtkIdType numPts)
 {
   auto array = vtkSmartPointer<ArrayT>::New();
@@ -97,9 +108,41 @@ vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
   array->SetNumberOfComponents(static_cast<int>(values.cols()));
   array->SetNumberOfTuples(numPts);
   array->FillValue(0);
-  ScatterRows<typename ArrayT::ValueType> scatter{ values, ids, array->GetPointer(0) };
-  vtkSMPTools::For(0, static_cast<vtkIdType>(ids.size()), scatter);
+  ScatterRows<typename ArrayT::ValueType> scatter{ values, targets, array->GetPointer(0) };
+  vtkSMPTools::For(0, static_cast<vtkIdType>(targets.Ids.size()), scatter);
   return array;
+}
+
+//------------------------------------------------------------------------------
+// The targets of the core's rows: `inputPointIds` maps row r to a point of the solved mesh,
+// `welded` (empty without welding) maps each output point to its point of the solved mesh.
+RowsToPoints Targets(const std::vector<int>& inputPointIds,
+  const std::vector<vtkIdType>& welded,
+  vtkIdType numPts)
+{
+  RowsToPoints targets;
+  if (welded.empty())
+  {
+    targets.Rows.resize(inputPointIds.size());
+    std::iota(targets.Rows.begin(), targets.Rows.end(), 0);
+    targets.Ids.assign(inputPointIds.begin(), inputPointIds.end());
+    return targets;
+  }
+  std::vector<int> rowOf(welded.size(), -1);
+  for (std::size_t r = 0; r < inputPointIds.size(); ++r)
+  {
+    rowOf[inputPointIds[r]] = static_cast<int>(r);
+  }
+  for (vtkIdType i = 0; i < numPts; ++i)
+  {
+    const int r = rowOf[welded[i]];
+    if (r >= 0)
+    {
+      targets.Rows.push_back(r);
+      targets.Ids.push_back(i);
+    }
+  }
+  return targets;
 }
 
 //------------------------------------------------------------------------------
@@ -107,7 +150,7 @@ vtkSmartPointer<ArrayT> ScatterToPoints(const char* name,
 // to the output. Ids maps the rows of the core's matrix to output points.
 void AddHarmonicsArray(vtkDataSet* output,
   const spectral::DenseMatrix& H,
-  const std::vector<int>& ids,
+  const RowsToPoints& ids,
   bool floats)
 {
   const vtkIdType numPts = output->GetNumberOfPoints();
@@ -133,7 +176,7 @@ void AddHarmonicsArray(vtkDataSet* output,
 // (point data, zero on unused points) and the eigenvalues (field data) to the output.
 void AddBasisArrays(vtkDataSet* output,
   const spectral::EigenResult& result,
-  const std::vector<int>& ids,
+  const RowsToPoints& ids,
   const spectral::Vector& lumped,
   bool floats)
 {
@@ -187,6 +230,74 @@ vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPoly
 }
 
 //------------------------------------------------------------------------------
+// The point ghost array of the output: the merge of the points (WeldPoints) decides which copy
+// of a point counts (`duplicates`: NotOwnedPointFlag on the others); the input's other flags
+// stay.
+void AddPointGhosts(vtkPointSet* output, vtkPointSet* input, vtkUnsignedCharArray* duplicates)
+{
+  vtkNew<vtkUnsignedCharArray> ghosts;
+  ghosts->DeepCopy(duplicates);
+  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+  vtkUnsignedCharArray* existing = vtkManifoldHarmonicsGhosts::PointGhosts(input);
+  const unsigned char kept =
+    static_cast<unsigned char>(~vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
+  for (vtkIdType i = 0; existing && i < ghosts->GetNumberOfTuples(); ++i)
+  {
+    ghosts->SetValue(i, ghosts->GetValue(i) | (existing->GetValue(i) & kept));
+  }
+  output->GetPointData()->AddArray(ghosts);
+}
+
+//------------------------------------------------------------------------------
+// Welds the points of `mesh` (WeldPoints, `owned` from the input's point ghost flags): `welding`
+// says which points became one. When some did, `welded` is the mesh to solve on, its cells
+// renumbered, and the return value is true.
+bool WeldMesh(const spectral::TriangleMesh& mesh,
+  vtkPointSet* input,
+  double tolerance,
+  vtkManifoldHarmonicsParallel::Welding& welding,
+  spectral::TriangleMesh& welded)
+{
+  const vtkIdType n = static_cast<vtkIdType>(mesh.Vertices.rows());
+  const spectral::Vector ownedPoints = vtkManifoldHarmonicsGhosts::OwnedPoints(input);
+  std::vector<unsigned char> owned(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    owned[i] = ownedPoints[i] > 0.0 ? 1 : 0;
+  }
+  welding =
+    vtkManifoldHarmonicsParallel::WeldPoints(mesh.Vertices.data(), n, nullptr, tolerance, owned);
+  if (!welding.Merged())
+  {
+    return false;
+  }
+  welded.Vertices.resize(static_cast<Eigen::Index>(welding.First.size()), 3);
+  for (std::size_t j = 0; j < welding.First.size(); ++j)
+  {
+    welded.Vertices.row(j) = mesh.Vertices.row(welding.First[j]);
+  }
+  const auto renumber = [&welding](int id) { return static_cast<int>(welding.Map[id]); };
+  welded.Faces = mesh.Faces.unaryExpr(renumber);
+  welded.Tets = mesh.Tets.unaryExpr(renumber);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// NotOwnedPointFlag on every copy of a welded point but the one that counts.
+vtkSmartPointer<vtkUnsignedCharArray> WeldedDuplicates(
+  const vtkManifoldHarmonicsParallel::Welding& welding)
+{
+  auto duplicates = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  duplicates->SetNumberOfTuples(static_cast<vtkIdType>(welding.Map.size()));
+  for (vtkIdType i = 0; i < duplicates->GetNumberOfTuples(); ++i)
+  {
+    duplicates->SetValue(
+      i, welding.Counted[welding.Map[i]] == i ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
+  }
+  return duplicates;
+}
+
+//------------------------------------------------------------------------------
 // The arrays of a distributed run on the output of one process: its rows of the harmonics and
 // mass (also on its ghost points: the owner's rows), the eigenvalues, and the point ghost array:
 // DUPLICATEPOINT on the points another process owns, the input's other flags kept. The cell
@@ -213,19 +324,7 @@ void AddPieceArrays(vtkPointSet* output,
   rows.Mass->SetName(vtkManifoldHarmonicBasis::MassArrayName());
   output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
-
-  // The merge decides which process owns a point (NotOwnedPointFlag); other flags stay.
-  vtkNew<vtkUnsignedCharArray> ghosts;
-  ghosts->DeepCopy(rows.Duplicates);
-  ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
-  vtkUnsignedCharArray* existing = vtkManifoldHarmonicsGhosts::PointGhosts(input);
-  const unsigned char kept =
-    static_cast<unsigned char>(~vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
-  for (vtkIdType i = 0; existing && i < ghosts->GetNumberOfTuples(); ++i)
-  {
-    ghosts->SetValue(i, ghosts->GetValue(i) | (existing->GetValue(i) & kept));
-  }
-  output->GetPointData()->AddArray(ghosts);
+  AddPointGhosts(output, input, rows.Duplicates);
 
   vtkNew<vtkDoubleArray> eigenvalues;
   eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
@@ -278,6 +377,13 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
           << (limited ? " or raise MemoryLimit." : " or free memory.");
   return message.str();
 }
+
+//------------------------------------------------------------------------------
+// The warning of a distributed run with WeldSeams off.
+constexpr const char* KeptSeamsIgnored =
+  "WeldSeams is off, but a distributed run merges the points that coincide within SeamTolerance "
+  "(it cannot tell a seam inside a piece from one between pieces): keep seams open in a serial "
+  "run.";
 
 //------------------------------------------------------------------------------
 // The settings of the filter as options of the core's entry point.
@@ -341,6 +447,8 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , EigenvaluesOnly(false)
   , Solver(BUILT_IN)
   , SlepcPartitions(1)
+  , WeldSeams(true)
+  , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
 {
   this->FrequencyWindow[0] = 0.0;
   this->FrequencyWindow[1] = 0.0;
@@ -417,7 +525,7 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
       return 1;
     }
   }
-  return this->ComputeBasis(input, output);
+  return this->ComputeBasis(input, output, this->WeldSeams);
 }
 
 //------------------------------------------------------------------------------
@@ -439,8 +547,12 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   {
     piece = ::Triangulate(this, input);
   }
+  if (!this->WeldSeams && controller->GetLocalProcessId() == 0)
+  {
+    vtkWarningMacro(<< KeptSeamsIgnored);
+  }
   const vtkManifoldHarmonicsParallel::MergedMesh merged =
-    vtkManifoldHarmonicsParallel::GatherAndMerge(controller, piece);
+    vtkManifoldHarmonicsParallel::GatherAndMerge(controller, piece, this->SeamTolerance);
 
   // Process 0 solves on the merged surface.
   int status = 1;
@@ -450,7 +562,8 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   if (controller->GetLocalProcessId() == 0)
   {
     vtkNew<vtkPolyData> whole;
-    status = this->ComputeBasis(merged.Surface, whole);
+    // The pieces are welded already (GatherAndMerge).
+    status = this->ComputeBasis(merged.Surface, whole, false);
     vtkDataArray* h = whole->GetPointData()->GetArray(HarmonicsArrayName());
     vtkDataArray* d = whole->GetPointData()->GetArray(MassArrayName());
     vtkDataArray* lambda = whole->GetFieldData()->GetArray(EigenvaluesArrayName());
@@ -520,6 +633,8 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   settings.Options = this->SlepcOptions;
   settings.Tolerance = this->Tolerance;
   settings.MaxIterations = this->MaxIterations;
+  settings.WeldSeams = this->WeldSeams;
+  settings.SeamTolerance = this->SeamTolerance;
   settings.Progress = [this](double fraction) { this->UpdateProgress(0.95 * fraction); };
   settings.Stage = [this](const char* stage) { this->SetProgressText(stage); };
   settings.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
@@ -542,6 +657,10 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   // Pieces that cannot be used, and point clouds (points on some process, cells on none), are
   // refused on every process alike (the counts are collective).
   const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  if (distributed && !this->WeldSeams && controller->GetLocalProcessId() == 0)
+  {
+    vtkWarningMacro(<< KeptSeamsIgnored);
+  }
   const auto count = [controller, distributed](bool flag) {
     return distributed ? vtkManifoldHarmonicsParallel::CountRanks(controller, flag) : flag ? 1 : 0;
   };
@@ -610,7 +729,7 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output)
+int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -660,12 +779,26 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
 
   try
   {
+    // The seam rule of every path: coincident points are one point (their copies get its rows).
+    vtkManifoldHarmonicsParallel::Welding welding;
+    spectral::TriangleMesh welded;
+    const spectral::TriangleMesh& mesh =
+      weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, welding, welded) ? welded
+                                                                                  : cells.Mesh;
     const spectral::BasisResult basis =
-      spectral::ComputeBasis(cells.Mesh, ::CoreOptions(this), ::FilterMonitor(this));
+      spectral::ComputeBasis(mesh, ::CoreOptions(this), ::FilterMonitor(this));
     this->SetProgressText("Write");
     output->ShallowCopy(input);
-    ::AddBasisArrays(
-      output, basis.Pairs, basis.InputPointIds, basis.LumpedMass, this->BasisPrecision == FLOAT);
+    ::AddBasisArrays(output,
+      basis.Pairs,
+      ::Targets(
+        basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
+      basis.LumpedMass,
+      this->BasisPrecision == FLOAT);
+    if (welding.Merged())
+    {
+      ::AddPointGhosts(output, input, ::WeldedDuplicates(welding));
+    }
     this->UpdateProgress(1.0);
     return 1;
   }
@@ -738,4 +871,8 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Slepc Options: \"" << this->SlepcOptions << "\" (default none)\n";
   os << indent << "Frequency Window: [" << this->FrequencyWindow[0] << ", "
      << this->FrequencyWindow[1] << ") (default [0, 0): off)\n";
+  os << indent << "Weld Seams: " << (this->WeldSeams ? "on" : "off")
+     << " (default on: points within Seam Tolerance are one point)\n";
+  os << indent << "Seam Tolerance: " << this->SeamTolerance << " (default "
+     << vtkManifoldHarmonicsParallel::SeamTolerance << " of the bounding box diagonal)\n";
 }

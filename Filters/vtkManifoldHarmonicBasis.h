@@ -50,6 +50,18 @@
  * (default 0, automatic), Tolerance (default 1e-11) and MaxIterations (default 1000), and
  * MemoryLimit (default 0: the memory the system reports available).
  *
+ * Seams: points that coincide within SeamTolerance (default 1e-12 of the bounding box diagonal)
+ * are one point (WeldSeams, default on), in serial and distributed runs alike: a mesh whose faces
+ * hold their own copies of shared points (an OBJ with texture or normal indices as ParaView's
+ * reader gives it, an unmerged STL) has the harmonics of the welded surface. Every copy of a
+ * welded point gets the same harmonics and mass, so filtering keeps the seams closed, and the
+ * output keeps the input's points, cells and arrays; all copies but one (the first that the
+ * input does not flag as another process's) are flagged vtkDataSetAttributes::DUPLICATEPOINT in
+ * the point ghost array (vtkGhostType), so that vtkManifoldHarmonicTransform counts the point
+ * once. WeldSeams off keeps every point apart (each piece its own connected component) in a
+ * serial run; a distributed run merges coincident points whatever WeldSeams says (it cannot tell
+ * a seam inside a piece from one between pieces) and warns.
+ *
  * Memory: before it assembles anything, the filter estimates the memory the computation needs
  * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
  * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed,
@@ -68,7 +80,7 @@
  * Distributed runs (MPI: pvbatch, pvserver): when the global controller has several processes
  * and more than one holds triangles, the pieces are gathered on process 0 (surfaces in
  * vtkPolyData only: a distributed volume or unstructured grid is an error for now), the points they
- * share along their seams are merged (within 1e-12 of the bounding box diagonal), the basis of the
+ * share along their seams are merged (the seam rule above), the basis of the
  * whole surface is computed there and every process receives the rows of its own points and
  * all eigenvalues. Ghost cells (the vtkGhostType cell array, as D3 gives them) are left out of
  * the surface: another process owns them. A shared point is owned by the lowest rank holding it
@@ -447,6 +459,29 @@ public:
 
   ///@{
   /**
+   * Merge the points that coincide within SeamTolerance before solving (see Seams above), so
+   * that a surface whose faces hold their own copies of shared points is solved as one surface,
+   * and write each harmonic onto every copy. Default is on. Off keeps such pieces apart (one
+   * connected component each) in a serial run; a distributed run merges whatever this says.
+   */
+  vtkSetMacro(WeldSeams, bool);
+  vtkGetMacro(WeldSeams, bool);
+  vtkBooleanMacro(WeldSeams, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Points closer than this fraction of the bounding box diagonal are one point (WeldSeams, and
+   * the seams between the pieces of a distributed run). Default is 1e-12 (round-off: a sphere's
+   * 0 and 360 degree meridians differ by 1e-16 in sin(2 pi)); raise it for seams whose copies
+   * were rounded apart (a file written with few digits). Valid range [0, 0.1].
+   */
+  vtkSetClampMacro(SeamTolerance, double, 0.0, 0.1);
+  vtkGetMacro(SeamTolerance, double);
+  ///@}
+
+  ///@{
+  /**
    * Names of the output arrays: the point data harmonics ("ManifoldHarmonics"), the point data
    * lumped mass ("ManifoldHarmonicsMass") and the field data eigenvalues
    * ("ManifoldHarmonicsEigenvalues"). Downstream filters look the arrays up by these names,
@@ -465,9 +500,9 @@ protected:
 
   /**
    * The basis of the whole `input` into `output` (a serial run, or process 0 of a distributed
-   * one, on the merged pieces).
+   * one, on the merged pieces), welding its coincident points first when `weld` is true.
    */
-  int ComputeBasis(vtkPointSet* input, vtkPointSet* output);
+  int ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld);
 
   /**
    * The SLEPC solver: every process solves with the others on its own piece (collective; a
@@ -500,6 +535,8 @@ protected:
   int Solver;
   int SlepcPartitions;
   std::string SlepcOptions;
+  bool WeldSeams;
+  double SeamTolerance;
 
 private:
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;

@@ -57,6 +57,8 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , NumberOfNeighbors(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS)
   , Solver(vtkManifoldHarmonicBasis::BUILT_IN)
   , SlepcPartitions(1)
+  , WeldSeams(true)
+  , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
   , Filter(vtkSmartPointer<vtkSpectralFilter>::New())
@@ -150,6 +152,8 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->SetSolver(this->Solver);
   this->Basis->SetSlepcPartitions(this->SlepcPartitions);
   this->Basis->SetSlepcOptions(this->SlepcOptions.c_str());
+  this->Basis->SetWeldSeams(this->WeldSeams);
+  this->Basis->SetSeamTolerance(this->SeamTolerance);
   // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
   this->Basis->SetAbortExecute(this->GetAbortExecute());
   this->Basis->Update();
@@ -234,4 +238,7 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
      << " (default Built-in)\n";
   os << indent << "SlepcPartitions: " << this->SlepcPartitions << " (default 1)\n";
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\" (default none)\n";
+  os << indent << "WeldSeams: " << (this->WeldSeams ? "on" : "off") << " (default on)\n";
+  os << indent << "SeamTolerance: " << this->SeamTolerance << " (default "
+     << vtkManifoldHarmonicsParallel::SeamTolerance << ")\n";
 }

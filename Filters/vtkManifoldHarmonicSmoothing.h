@@ -40,6 +40,9 @@
  * - Solver (default vtkManifoldHarmonicBasis::BUILT_IN), SlepcPartitions (default 1) and
  *   SlepcOptions (default none): the eigensolver of the basis and its settings (see
  *   vtkManifoldHarmonicBasis::SetSolver); SLEPC solves distributed over the MPI processes.
+ * - WeldSeams (default on) and SeamTolerance (default 1e-12 of the bounding box diagonal): the
+ *   seam rule of the basis (vtkManifoldHarmonicBasis::SetWeldSeams): coincident points are one
+ *   point and all their copies move alike, so seams stay closed.
  *
  * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
  * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
@@ -183,6 +186,18 @@ public:
   vtkGetCharFromStdStringMacro(SlepcOptions);
   ///@}
 
+  ///@{
+  /**
+   * The seam rule of the internal basis: see vtkManifoldHarmonicBasis::SetWeldSeams and
+   * SetSeamTolerance. Defaults are on and 1e-12; SeamTolerance range [0, 0.1].
+   */
+  vtkSetMacro(WeldSeams, bool);
+  vtkGetMacro(WeldSeams, bool);
+  vtkBooleanMacro(WeldSeams, bool);
+  vtkSetClampMacro(SeamTolerance, double, 0.0, 0.1);
+  vtkGetMacro(SeamTolerance, double);
+  ///@}
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
@@ -200,6 +215,8 @@ protected:
   int Solver;
   int SlepcPartitions;
   std::string SlepcOptions;
+  bool WeldSeams;
+  double SeamTolerance;
 
 private:
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkManifoldHarmonicsParallel.h"
 
+#include "vtkBoundingBox.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCommunicator.h"
@@ -14,7 +15,6 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPointLocator.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
@@ -22,6 +22,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 namespace
 {
@@ -92,38 +94,123 @@ void ReceiveArray(vtkMultiProcessController* controller, vtkDataArray* array, in
 }
 
 //------------------------------------------------------------------------------
-// Adds one piece to the merged mesh: its points through the point merger, its triangles
-// renumbered. Records the piece's point map and the owner of each point: the lowest rank that
-// holds it as its own (not a ghost copy), or the lowest rank that holds it if none does.
-// `ownerIsGhost[j]` tells whether the owner of merged point j so far holds it as a ghost.
-void MergePiece(int rank,
-  vtkDoubleArray* points,
-  vtkUnsignedCharArray* owned,
-  vtkIdTypeArray* triangles,
-  vtkPointLocator* merger,
-  vtkCellArray* mergedTriangles,
-  std::vector<bool>& ownerIsGhost,
-  vtkManifoldHarmonicsParallel::MergedMesh& merged)
+bool Finite(const double x[3])
 {
-  std::vector<vtkIdType>& map = merged.PointMaps[rank];
-  map.resize(points->GetNumberOfTuples());
-  const bool hasOwnership = owned->GetNumberOfTuples() == points->GetNumberOfTuples();
-  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+}
+
+//------------------------------------------------------------------------------
+// The bounding box of the finite points of `xyz` (n by 3); zeros if there are none.
+void FiniteBounds(const double* xyz, vtkIdType n, double bounds[6])
+{
+  vtkBoundingBox box;
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    double x[3];
-    points->GetTypedTuple(i, x);
-    const bool ghost = hasOwnership && owned->GetValue(i) == 0;
-    if (merger->InsertUniquePoint(x, map[i]))
+    if (Finite(xyz + 3 * i))
     {
-      merged.Owner.push_back(rank);
-      ownerIsGhost.push_back(ghost);
-    }
-    else if (ownerIsGhost[map[i]] && !ghost)
-    {
-      merged.Owner[map[i]] = rank;
-      ownerIsGhost[map[i]] = false;
+      box.AddPoint(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
     }
   }
+  if (box.IsValid())
+  {
+    box.GetBounds(bounds);
+  }
+}
+
+//------------------------------------------------------------------------------
+// A hash grid of cells four times the merge radius (still far smaller than the spacing of
+// distinct points): a search looks at the cell of the point, and at a neighbouring cell only
+// along an axis where the point lies within the radius of the cell's side (3.4 cells on average).
+class WeldGrid
+{
+public:
+  WeldGrid(const double bounds[6], double radius)
+    : Origin{ bounds[0], bounds[2], bounds[4] }
+    , Radius(radius)
+  {
+    const double extent =
+      std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-300 });
+    // Cell indices stay far inside 64 bits (radius 0: exact matches).
+    this->Size = std::max(4.0 * radius, extent * 1e-15);
+  }
+
+  void Add(const double x[3], vtkIdType welded)
+  {
+    CellKey key;
+    for (int d = 0; d < 3; ++d)
+    {
+      key[d] = this->Index(x, d);
+    }
+    this->Cells[key].push_back(welded);
+  }
+
+  // The smallest welded id whose first copy lies within the radius of x, or -1.
+  vtkIdType Find(const double x[3], const double* xyz, const std::vector<vtkIdType>& first) const
+  {
+    // Per axis: the cell of x, and the neighbour whose side lies within the radius (if any).
+    std::array<std::array<std::int64_t, 2>, 3> candidates;
+    std::array<int, 3> counts;
+    for (int d = 0; d < 3; ++d)
+    {
+      const std::int64_t index = this->Index(x, d);
+      const double offset = x[d] - this->Origin[d] - static_cast<double>(index) * this->Size;
+      candidates[d] = { index, offset <= this->Radius ? index - 1 : index + 1 };
+      counts[d] = offset <= this->Radius || this->Size - offset <= this->Radius ? 2 : 1;
+    }
+    vtkIdType found = -1;
+    for (int a = 0; a < counts[0]; ++a)
+    {
+      for (int b = 0; b < counts[1]; ++b)
+      {
+        for (int c = 0; c < counts[2]; ++c)
+        {
+          const auto cell =
+            this->Cells.find({ candidates[0][a], candidates[1][b], candidates[2][c] });
+          for (vtkIdType j : cell == this->Cells.end() ? NoPoints : cell->second)
+          {
+            if ((found < 0 || j < found) &&
+              vtkMath::Distance2BetweenPoints(x, xyz + 3 * first[j]) <= this->Radius * this->Radius)
+            {
+              found = j;
+            }
+          }
+        }
+      }
+    }
+    return found;
+  }
+
+private:
+  using CellKey = std::array<std::int64_t, 3>;
+  struct KeyHash
+  {
+    std::size_t operator()(const CellKey& k) const
+    {
+      const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+      return static_cast<std::size_t>(
+        (u(k[0]) * 73856093u) ^ (u(k[1]) * 19349663u) ^ (u(k[2]) * 83492791u));
+    }
+  };
+
+  std::int64_t Index(const double x[3], int d) const
+  {
+    return static_cast<std::int64_t>(std::floor((x[d] - this->Origin[d]) / this->Size));
+  }
+
+  static const std::vector<vtkIdType> NoPoints;
+  std::array<double, 3> Origin;
+  double Radius;
+  double Size = 1.0;
+  std::unordered_map<CellKey, std::vector<vtkIdType>, KeyHash> Cells;
+};
+const std::vector<vtkIdType> WeldGrid::NoPoints;
+
+//------------------------------------------------------------------------------
+// Adds the triangles of one piece to the merged mesh, renumbered by the piece's point map.
+void AddTriangles(vtkIdTypeArray* triangles,
+  const std::vector<vtkIdType>& map,
+  vtkCellArray* mergedTriangles)
+{
   for (vtkIdType t = 0; t < triangles->GetNumberOfTuples(); ++t)
   {
     const vtkIdType ids[3] = { map[triangles->GetTypedComponent(t, 0)],
@@ -155,7 +242,7 @@ void PieceRows(int rank,
       harmonics.row(j).data(), harmonics.row(j).data() + m, piece.Harmonics->GetPointer(i * m));
     piece.Mass->SetValue(i, mass[j]);
     piece.Duplicates->SetValue(
-      i, merged.Owner[j] == rank ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
+      i, merged.Counted[rank][i] ? 0 : vtkManifoldHarmonicsGhosts::NotOwnedPointFlag);
   }
 }
 
@@ -274,7 +361,63 @@ int CountRanks(vtkMultiProcessController* controller, bool hasData)
 }
 
 //------------------------------------------------------------------------------
-MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* piece)
+Welding WeldPoints(const double* xyz,
+  vtkIdType n,
+  const double* bounds,
+  double tolerance,
+  const std::vector<unsigned char>& owned)
+{
+  double box[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  if (bounds)
+  {
+    std::copy(bounds, bounds + 6, box);
+  }
+  else
+  {
+    FiniteBounds(xyz, n, box);
+  }
+  const double diagonal = std::sqrt(
+    vtkMath::Distance2BetweenPoints(std::array<double, 3>{ box[0], box[2], box[4] }.data(),
+      std::array<double, 3>{ box[1], box[3], box[5] }.data()));
+  const double radius = tolerance * diagonal;
+  WeldGrid grid(box, radius);
+  Welding welding;
+  welding.Map.resize(static_cast<std::size_t>(n));
+  const bool hasOwnership = static_cast<vtkIdType>(owned.size()) == n;
+  std::vector<bool> countedIsOwned;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double* x = xyz + 3 * i;
+    const bool finite = Finite(x);
+    // The earliest welded point within the radius (non-finite points stay apart).
+    vtkIdType j = finite ? grid.Find(x, xyz, welding.First) : -1;
+    const bool isOwned = !hasOwnership || owned[i] != 0;
+    if (j < 0)
+    {
+      j = static_cast<vtkIdType>(welding.First.size());
+      welding.First.push_back(i);
+      welding.Counted.push_back(i);
+      countedIsOwned.push_back(isOwned);
+      if (finite)
+      {
+        grid.Add(x, j);
+      }
+    }
+    else if (isOwned && !countedIsOwned[j])
+    {
+      // A copy of an earlier point: it counts if it is the first owned one.
+      welding.Counted[j] = i;
+      countedIsOwned[j] = true;
+    }
+    welding.Map[i] = j;
+  }
+  return welding;
+}
+
+//------------------------------------------------------------------------------
+MergedMesh GatherAndMerge(vtkMultiProcessController* controller,
+  vtkPolyData* piece,
+  double tolerance)
 {
   MergedMesh merged;
   vtkNew<vtkDoubleArray> points;
@@ -290,54 +433,59 @@ MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* pi
     return merged;
   }
 
+  // All points in rank order, with their ownership (1 where a piece has no ghost array).
   const int size = controller->GetNumberOfProcesses();
-  std::vector<vtkSmartPointer<vtkDoubleArray>> allPoints(size);
-  std::vector<vtkSmartPointer<vtkUnsignedCharArray>> allOwned(size);
   std::vector<vtkSmartPointer<vtkIdTypeArray>> allTriangles(size);
-  allPoints[0] = points;
-  allOwned[0] = owned;
-  allTriangles[0] = triangles;
-  double bounds[6] = {
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN
-  };
+  std::vector<vtkIdType> offsets(size + 1, 0);
+  vtkNew<vtkDoubleArray> allPoints;
+  allPoints->SetNumberOfComponents(3);
+  std::vector<unsigned char> allOwned;
   for (int r = 0; r < size; ++r)
   {
+    vtkSmartPointer<vtkDoubleArray> rankPoints = points;
+    vtkSmartPointer<vtkUnsignedCharArray> rankOwned = owned;
+    allTriangles[r] = triangles;
     if (r > 0)
     {
-      allPoints[r] = vtkSmartPointer<vtkDoubleArray>::New();
-      allPoints[r]->SetNumberOfComponents(3);
-      allOwned[r] = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      rankPoints = vtkSmartPointer<vtkDoubleArray>::New();
+      rankPoints->SetNumberOfComponents(3);
+      rankOwned = vtkSmartPointer<vtkUnsignedCharArray>::New();
       allTriangles[r] = vtkSmartPointer<vtkIdTypeArray>::New();
       allTriangles[r]->SetNumberOfComponents(3);
-      ReceiveArray(controller, allPoints[r], r, PieceTag);
-      ReceiveArray(controller, allOwned[r], r, PieceTag);
+      ReceiveArray(controller, rankPoints, r, PieceTag);
+      ReceiveArray(controller, rankOwned, r, PieceTag);
       ReceiveArray(controller, allTriangles[r], r, PieceTag);
     }
-    for (int c = 0; c < 3 && allPoints[r]->GetNumberOfTuples() > 0; ++c)
+    const vtkIdType n = rankPoints->GetNumberOfTuples();
+    offsets[r + 1] = offsets[r] + n;
+    const bool hasOwnership = rankOwned->GetNumberOfTuples() == n;
+    for (vtkIdType i = 0; i < n; ++i)
     {
-      const double* range = allPoints[r]->GetRange(c);
-      bounds[2 * c] = std::min(bounds[2 * c], range[0]);
-      bounds[2 * c + 1] = std::max(bounds[2 * c + 1], range[1]);
+      allPoints->InsertNextTuple(i, rankPoints);
+      allOwned.push_back(hasOwnership ? rankOwned->GetValue(i) : 1);
     }
   }
-
-  // Merge within SeamTolerance of the bounding box diagonal, not exactly. The first piece
-  // holding a point gives its coordinates.
+  // The first copy of a merged point gives its coordinates.
+  const Welding welding = WeldPoints(
+    allPoints->GetPointer(0), allPoints->GetNumberOfTuples(), nullptr, tolerance, allOwned);
   vtkNew<vtkPoints> mergedPoints;
   mergedPoints->SetDataTypeToDouble();
-  vtkNew<vtkPointLocator> merger;
-  const double diagonal = std::sqrt(
-    vtkMath::Distance2BetweenPoints(std::array<double, 3>{ bounds[0], bounds[2], bounds[4] }.data(),
-      std::array<double, 3>{ bounds[1], bounds[3], bounds[5] }.data()));
-  merger->SetTolerance(vtkManifoldHarmonicsParallel::SeamTolerance * std::max(diagonal, 1e-300));
-  merger->InitPointInsertion(mergedPoints, bounds);
+  mergedPoints->SetNumberOfPoints(static_cast<vtkIdType>(welding.First.size()));
+  for (std::size_t j = 0; j < welding.First.size(); ++j)
+  {
+    mergedPoints->SetPoint(static_cast<vtkIdType>(j), allPoints->GetTuple3(welding.First[j]));
+  }
   vtkNew<vtkCellArray> mergedTriangles;
   merged.PointMaps.resize(size);
-  std::vector<bool> ownerIsGhost;
+  merged.Counted.resize(size);
   for (int r = 0; r < size; ++r)
   {
-    MergePiece(
-      r, allPoints[r], allOwned[r], allTriangles[r], merger, mergedTriangles, ownerIsGhost, merged);
+    for (vtkIdType g = offsets[r]; g < offsets[r + 1]; ++g)
+    {
+      merged.PointMaps[r].push_back(welding.Map[g]);
+      merged.Counted[r].push_back(welding.Counted[welding.Map[g]] == g);
+    }
+    AddTriangles(allTriangles[r], merged.PointMaps[r], mergedTriangles);
   }
   merged.Surface = vtkSmartPointer<vtkPolyData>::New();
   merged.Surface->SetPoints(mergedPoints);

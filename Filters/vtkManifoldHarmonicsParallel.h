@@ -8,10 +8,12 @@
  * The basis is global: vtkManifoldHarmonicBasis gathers the pieces on process 0, merges the
  * points that pieces duplicate along their seams, solves there and sends every process the rows
  * of its own points. Ghost cells of the pieces are left out (vtkManifoldHarmonicsGhosts.h). A
- * point held by several processes is owned by the lowest rank that holds it as its own (not as a
- * ghost point; the lowest rank that holds it if none does); on the others it is flagged
- * vtkDataSetAttributes::DUPLICATEPOINT in the point ghost array, so that the sums over points of
- * vtkManifoldHarmonicTransform (then added over processes) count it once.
+ * point held several times (by several processes, or twice in one piece) is counted by its first
+ * copy in rank order that its piece holds as its own (not as a ghost point; the first copy if
+ * none does); the other copies are flagged vtkDataSetAttributes::DUPLICATEPOINT in the point
+ * ghost array, so that the sums over points of vtkManifoldHarmonicTransform (then added over
+ * processes) count it once. WeldPoints is this merge rule, shared by the serial run, the gather
+ * and the SLEPc solver's numbering.
  *
  * Every function here is collective: all processes of the controller must call it, including
  * those without data. Not installed and not wrapped.
@@ -35,10 +37,40 @@ class vtkUnsignedCharArray;
 
 namespace vtkManifoldHarmonicsParallel
 {
-/// Seam points of different pieces within this fraction of the bounding box diagonal are one
-/// point (pieces may compute a shared point differently: a sphere's 0 and 360 degree meridians
-/// differ by 1e-16 in sin(2 pi)). Used by GatherAndMerge and the SLEPc solver's numbering.
+/// The default of vtkManifoldHarmonicBasis::SeamTolerance: points within this fraction of the
+/// bounding box diagonal are one point (pieces, or the faces of an unwelded mesh, may compute a
+/// shared point differently: a sphere's 0 and 360 degree meridians differ by 1e-16 in sin(2 pi)).
 constexpr double SeamTolerance = 1e-12;
+
+/**
+ * The seam rule of every path (serial, gather to process 0, SLEPc): which points are one point.
+ * A point within `tolerance` times the diagonal of `bounds` of the first copy of a welded point
+ * met before it (in the order given) is merged into the earliest such welded point; otherwise it
+ * starts a welded point of its own. `bounds` gives the diagonal (the same on every process),
+ * nullptr means the bounding box of the finite points. A point with a NaN or infinite coordinate
+ * stays apart (the solver reports it if a cell uses it). The point that stands for a welded point
+ * in sums over points is its first copy that `owned` marks (nonzero), or its first copy if none is
+ * marked (or `owned` is empty); the other copies are flagged
+ * vtkManifoldHarmonicsGhosts::NotOwnedPointFlag so that they count zero times.
+ */
+struct Welding
+{
+  /// Map[i]: the welded point of point i; welded points are numbered in order of first copy.
+  std::vector<vtkIdType> Map;
+  /// First[j]: the first copy of welded point j (it gives the coordinates).
+  std::vector<vtkIdType> First;
+  /// Counted[j]: the copy of welded point j that sums over points count (see above).
+  std::vector<vtkIdType> Counted;
+  /// Whether some points were merged.
+  bool Merged() const { return this->First.size() < this->Map.size(); }
+};
+
+/// The welding of the n points `xyz` (row-major, n by 3), see Welding.
+Welding WeldPoints(const double* xyz,
+  vtkIdType n,
+  const double* bounds,
+  double tolerance,
+  const std::vector<unsigned char>& owned = {});
 
 /// The global controller when it has more than one process, otherwise nullptr (serial run).
 vtkMultiProcessController* DistributedController();
@@ -53,17 +85,22 @@ struct MergedMesh
   vtkSmartPointer<vtkPolyData> Surface;
   /// PointMaps[r][i]: merged id of point i of the piece of process r.
   std::vector<std::vector<vtkIdType>> PointMaps;
-  /// Owner[j]: the rank that owns merged point j (see above).
-  std::vector<int> Owner;
+  /// Counted[r][i]: whether point i of the piece of process r is the copy of its merged point
+  /// that sums over points count (WeldPoints, on the pieces in rank order; the owner is the
+  /// process of that copy).
+  std::vector<std::vector<bool>> Counted;
 };
 
 /**
  * Gather the triangle pieces (points, their point ghost flags and triangles; `piece` may be
  * empty, its ghost cells are already left out by vtkManifoldHarmonicsGhosts::CountedCells) on
- * process 0 and merge coincident points. \return the merged mesh on process 0, an empty MergedMesh
- * elsewhere.
+ * process 0 and merge the points that coincide within `tolerance` of the bounding box diagonal
+ * (WeldPoints), in one piece or across pieces. \return the merged mesh on process 0, an empty
+ * MergedMesh elsewhere.
  */
-MergedMesh GatherAndMerge(vtkMultiProcessController* controller, vtkPolyData* piece);
+MergedMesh GatherAndMerge(vtkMultiProcessController* controller,
+  vtkPolyData* piece,
+  double tolerance);
 
 /// The rows of one process: harmonics (n_r by m), mass (n_r) and DUPLICATEPOINT flags (n_r) on
 /// the points another process owns.

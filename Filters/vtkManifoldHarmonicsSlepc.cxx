@@ -288,8 +288,9 @@ struct Numbering
 
 Numbering NumberPoints(MPI_Comm comm,
   const spectral::TriangleMesh& mesh,
-  double diagonal,
-  const double bounds[6])
+  const double bounds[6],
+  bool weld,
+  double tolerance)
 {
   int rank = 0;
   int size = 1;
@@ -329,25 +330,16 @@ Numbering NumberPoints(MPI_Comm comm,
     MPI_DOUBLE,
     comm);
 
-  // The same merge on every process: the first (lowest rank) holder of a point owns it.
+  // The same merge on every process (WeldPoints): the first (lowest rank) holder of a point owns
+  // it. Without welding (a serial run with WeldSeams off) every point is its own.
   std::vector<int> first(static_cast<std::size_t>(offsets[size]));
   {
-    vtkNew<vtkPoints> merged;
-    merged->SetDataTypeToDouble();
-    vtkNew<vtkPointLocator> locator;
-    locator->SetTolerance(vtkManifoldHarmonicsParallel::SeamTolerance * std::max(diagonal, 1e-300));
-    double box[6];
-    std::copy(bounds, bounds + 6, box);
-    locator->InitPointInsertion(merged, box, std::max(offsets[size], 1));
-    std::vector<int> firstOfMerged;
+    const vtkManifoldHarmonicsParallel::Welding welding = weld
+      ? vtkManifoldHarmonicsParallel::WeldPoints(all.data(), offsets[size], bounds, tolerance)
+      : vtkManifoldHarmonicsParallel::Welding();
     for (int g = 0; g < offsets[size]; ++g)
     {
-      vtkIdType id = -1;
-      if (locator->InsertUniquePoint(&all[3 * static_cast<std::size_t>(g)], id))
-      {
-        firstOfMerged.push_back(g);
-      }
-      first[g] = firstOfMerged[id];
+      first[g] = weld ? static_cast<int>(welding.First[welding.Map[g]]) : g;
     }
   }
 
@@ -1125,7 +1117,8 @@ Result Solve(vtkMultiProcessController* controller,
     bounds[2 * c + 1] = globalHigh[c];
   }
   diagonal = std::sqrt(diagonal);
-  const Numbering numbering = NumberPoints(comm, mesh, diagonal, bounds);
+  const Numbering numbering =
+    NumberPoints(comm, mesh, bounds, settings.WeldSeams || size > 1, settings.SeamTolerance);
 
   Result result;
   result.GlobalPoints = numbering.Total;

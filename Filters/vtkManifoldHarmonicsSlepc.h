@@ -14,10 +14,11 @@
  *    points on the border of its piece (on a facet, an edge of a triangle or a face of a
  *    tetrahedron, that fewer or more than two of its cells share) are the only ones another
  *    piece can hold: every process receives these seam points of all processes (O(sqrt n) per
- *    piece on a surface, O(n^(2/3)) in a volume, not the mesh) and merges them as the gather path
- *    does (within SeamTolerance of the bounding box diagonal, in rank order, so every process
- *    finds the same merge). A point is owned by the lowest rank that holds it; each process
- *    numbers its owned points contiguously after those of the lower ranks.
+ *    piece on a surface, O(n^(2/3)) in a volume, not the mesh) and merges them with the seam
+ *    rule of every path, vtkManifoldHarmonicsParallel::WeldPoints (within SeamTolerance of the
+ *    bounding box diagonal, in rank order, so every process finds the same merge). A point is
+ *    owned by the lowest rank that holds it; each process numbers its owned points contiguously
+ *    after those of the lower ranks.
  * 2. Assembly. Each process computes the stiffness (cotan, or P1 for tetrahedra) and the mass
  *    (lumped or consistent) of its own cells with the core's formulas (Operators.h), in units
  *    of spectral::UnitScale
@@ -87,6 +88,12 @@ struct Settings
   /// Convergence tolerance and iteration limit of Krylov-Schur.
   double Tolerance = 1e-11;
   int MaxIterations = 1000;
+  /// The seam rule (vtkManifoldHarmonicsParallel::WeldPoints on the pieces' border points):
+  /// points within SeamTolerance of the bounding box diagonal are one point. With WeldSeams off,
+  /// a run on one process keeps every point apart; several processes always merge (the pieces
+  /// must be joined).
+  bool WeldSeams = true;
+  double SeamTolerance = vtkManifoldHarmonicsParallel::SeamTolerance;
   /// Progress in [0, 1], a stage name, and the abort flag (polled between Krylov-Schur
   /// iterations; every process stops when one is cancelled).
   std::function<void(double)> Progress;

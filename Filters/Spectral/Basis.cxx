@@ -167,8 +167,9 @@ void ReportComponents(int components, int m, const Monitor& monitor, BasisResult
   const std::string count = std::to_string(components);
   Report({ "The surface has " + count + " connected components: the first " + count +
            " eigenvalues are zero, one for each. If they are pieces of one surface whose "
-           "seams are not welded, merge coincident points first (vtkCleanPolyData, Clean in "
-           "ParaView); leave out small debris with MinimumComponentSize." },
+           "seams are not welded, weld them: WeldSeams on, with a SeamTolerance above the gap "
+           "between the copies of a seam point (or vtkCleanPolyData, Clean in ParaView, with a "
+           "tolerance); leave out small debris with MinimumComponentSize." },
     monitor,
     result);
   if (m <= components)

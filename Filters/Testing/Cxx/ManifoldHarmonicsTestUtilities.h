@@ -8,9 +8,12 @@
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 
 #include <algorithm>
 #include <cmath>
@@ -48,6 +51,29 @@ inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
     }
   }
   return difference / scale;
+}
+
+/// 1 for a point that sums over points count, 0 for one flagged DUPLICATEPOINT in the point
+/// ghost array (a copy of a welded point, or a point another process owns).
+inline double CountedPoint(vtkPolyData* mesh, vtkIdType i)
+{
+  vtkDataArray* ghosts = mesh->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  return ghosts && (static_cast<int>(ghosts->GetTuple1(i)) & vtkDataSetAttributes::DUPLICATEPOINT)
+    ? 0.0
+    : 1.0;
+}
+
+/// The Sphere source's unit sphere with double points (its own copy, not the source's output).
+inline vtkSmartPointer<vtkPolyData> UnitSphere(int thetaResolution, int phiResolution)
+{
+  auto sphere = vtkSmartPointer<vtkSphereSource>::New();
+  sphere->SetThetaResolution(thetaResolution);
+  sphere->SetPhiResolution(phiResolution);
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  sphere->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(sphere->GetOutput());
+  return mesh;
 }
 
 /// The points joined by one polyline, without polygons: what vtkManifoldHarmonicBasis passes

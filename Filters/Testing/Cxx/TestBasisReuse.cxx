@@ -20,7 +20,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTestUtilities.h"
 #include "vtkXMLPolyDataReader.h"
@@ -41,13 +40,7 @@ using ManifoldHarmonicsTest::RelativeDifference;
 // A unit sphere (double points) with a scalar "Height".
 vtkSmartPointer<vtkPolyData> MakeSphere()
 {
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(16);
-  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  sphere->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(sphere->GetOutput());
+  vtkSmartPointer<vtkPolyData> mesh = ManifoldHarmonicsTest::UnitSphere(24, 16);
   vtkNew<vtkDoubleArray> height;
   height->SetName("Height");
   height->SetNumberOfTuples(mesh->GetNumberOfPoints());

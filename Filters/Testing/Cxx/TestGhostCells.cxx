@@ -26,7 +26,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 #include "vtkTable.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -48,14 +47,7 @@ constexpr int Harmonics = 16;
 // A unit sphere with double points: the real cells of the piece.
 vtkSmartPointer<vtkPolyData> MakeSphere()
 {
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetThetaResolution(20);
-  sphere->SetPhiResolution(14);
-  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-  sphere->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(sphere->GetOutput());
-  return mesh;
+  return ManifoldHarmonicsTest::UnitSphere(20, 14);
 }
 
 //------------------------------------------------------------------------------
