@@ -274,8 +274,8 @@ Vector ConstantNullVector(const SparseMatrix& M)
  * then the m - 1 smallest of the pencil restricted to the M-orthogonal complement of z.
  *
  * The complement {h : w^T h = 0}, w = M z, has the basis C of the columns e_i - (w_i / w_p) e_p,
- * i != p, with p the point of smallest L_pp / w_p (a large mass and small weights, the most
- * regular point): C^T L C and C^T M C add to each row i w_i / w_p times row p, so the rows of
+ * i != p, with p the point of smallest sum_j |L_pj| / w_p (a large mass and small weights of
+ * either sign, the most regular point): C^T L C and C^T M C add to each row i w_i / w_p times row p, so the rows of
  * tiny mass and huge weights (a scan's near-coincident points, cotangents up to 1e8) stay as
  * graded as in L and M and no huge weight spreads to the others, and the dense solve (with its
  * fallbacks for graded pencils) keeps its accuracy on them. (A basis of eigenvectors would mix
@@ -298,8 +298,9 @@ EigenResult DeflatedDenseEigenpairs(const SparseMatrix& L,
     return result;
   }
   const Vector w = M * z;
+  const Vector weights = L.cwiseAbs() * Vector::Ones(n);
   Eigen::Index p = 0;
-  (L.diagonal().array() / w.array()).minCoeff(&p);
+  (weights.array() / w.array()).minCoeff(&p);
   std::vector<Eigen::Triplet<double>> entries;
   for (Eigen::Index i = 0, column = 0; i < n; ++i)
   {
