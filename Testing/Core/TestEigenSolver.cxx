@@ -577,6 +577,7 @@ TriangleMesh SplitTriangles(double r, int place, bool bowtie)
         index[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(v)])];
     }
   }
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 

@@ -12,6 +12,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include "Perturbation.h" // Testing/Core: the rounding-level perturbation of generated meshes
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -48,6 +50,31 @@ inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)
     }
   }
   return difference / scale;
+}
+
+/**
+ * The points of a generated mesh times 1 + 1e-15 u when MANIFOLDHARMONICS_TEST_PERTURBATION is
+ * set (Testing/Core/Perturbation.h); unchanged without it. Float points round the perturbation
+ * away: it applies to double points.
+ */
+inline void Perturb(vtkPoints* points)
+{
+  spectral::testing::RoundingPerturbation factor;
+  if (!points || !factor.Active())
+  {
+    return;
+  }
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    for (double& x : p)
+    {
+      x *= factor();
+    }
+    points->SetPoint(i, p);
+  }
+  points->Modified();
 }
 
 /// The points joined by one polyline, without polygons: what vtkManifoldHarmonicBasis passes
