@@ -19,7 +19,7 @@
 # Environment: BUILD_ROOT (default build/core: builds in build/core-<arch>, run logs in
 # build/core-runs), ARCHS (default "x86-64 native"),
 # THREADS (default "1 2"), SEEDS (default "1 2 3"), LABEL (default counts), EXCLUDE (a label
-# to leave out, e.g. slow; default none), JOBS (parallel builds
+# to leave out, e.g. slow; default none), REGEX (only the tests whose names match), JOBS (parallel builds
 # and test runs, default 2), TEST_TIMEOUT (seconds per run, default 600).
 set -euo pipefail
 
@@ -34,6 +34,7 @@ threads_list=(${THREADS:-1 2})
 seeds=(none ${SEEDS:-1 2 3})
 label="${LABEL:-counts}"
 exclude="${EXCLUDE:-}"
+regex="${REGEX:-}"
 jobs="${JOBS:-2}"
 test_timeout="${TEST_TIMEOUT:-600}"
 start=${SECONDS}
@@ -48,7 +49,7 @@ echo "=== Builds took $((SECONDS - start)) s"
 
 # Test names Core.<executable>.<case>, from CTest's label.
 mapfile -t tests < <(ctest --test-dir "${build_root}-${archs[0]}" -N -L "${label}" \
-  ${exclude:+-LE "${exclude}"} |
+  ${exclude:+-LE "${exclude}"} ${regex:+-R "${regex}"} |
   sed -n 's/^ *Test *#[0-9]*: *//p')
 echo "=== ${#tests[@]} tests labelled ${label}${exclude:+, not ${exclude}}"
 
@@ -99,7 +100,7 @@ configs = sorted(os.listdir(root))
 check = re.compile(r"^\s*\[( ok |FAIL)\] (.*)$")
 margin = re.compile(r": ([-+0-9.eE]+|nan|-?inf) <= ([-+0-9.eE]+)$")
 moved, failed, tight = [], [], {}
-print("%-44s %s" % ("test", " ".join("%s" % c for c in configs)))
+print("%-54s %s" % ("test", " ".join("%s" % c for c in configs)))
 for test in tests:
     verdicts = {}
     for config in configs:
@@ -126,7 +127,7 @@ for test in tests:
     same = all(v == reference for v in verdicts.values())
     if not same:
         moved.append(test)
-    print("%-44s %s%s" % (test, " ".join(
+    print("%-54s %s%s" % (test, " ".join(
         ("pass" if v[0] == "exit 0" else "FAIL").center(len(c)) for c, v in
         sorted(verdicts.items())), "" if same else "   <- MOVED"))
 print("\nTightest margins (measured / bound, largest over the runs):")
