@@ -2,10 +2,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Assertions and a case runner for the core tests. Every check prints the measured value and
 // its bound; a failed check makes the test exit with EXIT_FAILURE.
+//
+// MANIFOLDHARMONICS_TEST_THREADS=<n> (n >= 1) in the environment runs every case under a
+// ScopedThreadLimit of n: what the core's automatic thread count (0, every core) means, as on a
+// machine with n cores (scripts/check-portability.sh runs the counting tests with 1 and 2).
 #ifndef spectral_Testing_Checks_h
 #define spectral_Testing_Checks_h
 
 #include "Common/Mesh.h"
+#include "Common/Threads.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,6 +127,8 @@ struct Case
 template<std::size_t N>
 int RunCases(int argc, char* argv[], const Case (&cases)[N])
 {
+  const char* threads = std::getenv("MANIFOLDHARMONICS_TEST_THREADS");
+  const ScopedThreadLimit limit(threads ? std::atoi(threads) : 0);
   bool found = false;
   for (const Case& c : cases)
   {

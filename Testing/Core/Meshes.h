@@ -1,12 +1,15 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 // Meshes built in code for the core tests and the benchmark (bench/): icospheres, flat rectangles,
-// tori, noisy tori of any size.
+// tori, noisy tori of any size. Each generator's points carry the rounding-level perturbation of
+// Perturbation.h when MANIFOLDHARMONICS_TEST_PERTURBATION is set (meshes built from them, such as
+// WithScanDefects, Disc or TetrahedralBall, inherit it).
 #ifndef spectral_Testing_Meshes_h
 #define spectral_Testing_Meshes_h
 
 #include "Common/Mesh.h"
 #include "Operators/Operators.h"
+#include "Perturbation.h"
 
 #include <array>
 #include <cmath>
@@ -19,6 +22,23 @@ namespace spectral
 {
 namespace testing
 {
+/// The points of a generated mesh, with the perturbation of the environment (Perturbation.h).
+inline void Perturbed(Points& vertices)
+{
+  RoundingPerturbation factor;
+  if (!factor.Active())
+  {
+    return;
+  }
+  for (Eigen::Index i = 0; i < vertices.rows(); ++i)
+  {
+    for (Eigen::Index c = 0; c < vertices.cols(); ++c)
+    {
+      vertices(i, c) *= factor();
+    }
+  }
+}
+
 /// Unit icosphere: the icosahedron split `level` times, points projected to the sphere.
 /// 10 * 4^level + 2 points.
 inline TriangleMesh Icosphere(int level)
@@ -105,6 +125,7 @@ inline TriangleMesh Icosphere(int level)
   {
     mesh.Faces.row(static_cast<Eigen::Index>(i)) << f[i][0], f[i][1], f[i][2];
   }
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 
@@ -157,6 +178,7 @@ inline TriangleMesh Rectangle(double a, double b, int nx, int ny)
   }
   mesh.Faces =
     GridTriangles(nx, ny, [](int i, int j, int, int, int, int) { return (i + j) % 2 == 0; });
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 
@@ -190,6 +212,7 @@ inline TriangleMesh Torus(double R, double r, int nu, int nv)
       mesh.Faces.row(2 * p00 + 1) << p00, p11, p01;
     }
   }
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 
@@ -251,6 +274,7 @@ inline TriangleMesh NoisyTorus(int nu, int nv, double noise)
       mesh.Faces.row(t++) << a, c, d;
     }
   }
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 
@@ -465,6 +489,7 @@ inline TriangleMesh TetrahedralBox(double a, double b, double c, int nx, int ny,
       }
     }
   }
+  Perturbed(mesh.Vertices);
   return mesh;
 }
 

@@ -15,6 +15,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 
+#include "Perturbation.h" // Testing/Core: the rounding-level perturbation of generated meshes
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -74,6 +76,31 @@ inline vtkSmartPointer<vtkPolyData> UnitSphere(int thetaResolution, int phiResol
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(sphere->GetOutput());
   return mesh;
+}
+
+/**
+ * The points of a generated mesh times 1 + 1e-15 u when MANIFOLDHARMONICS_TEST_PERTURBATION is
+ * set (Testing/Core/Perturbation.h); unchanged without it. Float points round the perturbation
+ * away: it applies to double points.
+ */
+inline void Perturb(vtkPoints* points)
+{
+  spectral::testing::RoundingPerturbation factor;
+  if (!points || !factor.Active())
+  {
+    return;
+  }
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    for (double& x : p)
+    {
+      x *= factor();
+    }
+    points->SetPoint(i, p);
+  }
+  points->Modified();
 }
 
 /// The points joined by one polyline, without polygons: what vtkManifoldHarmonicBasis passes

@@ -35,6 +35,7 @@ namespace
 constexpr double Pi = 3.14159265358979323846;
 
 using ManifoldHarmonicsTest::Check;
+using ManifoldHarmonicsTest::Perturb;
 
 //------------------------------------------------------------------------------
 // Unit icosphere: the icosahedron with each triangle split in four `levels` times, points
@@ -84,6 +85,7 @@ vtkSmartPointer<vtkPolyData> MakeIcosphere(int levels, int dataType)
     const double norm = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     points->InsertNextPoint(p[0] / norm, p[1] / norm, p[2] / norm);
   }
+  Perturb(points);
   vtkNew<vtkCellArray> polys;
   for (const auto& f : faces)
   {

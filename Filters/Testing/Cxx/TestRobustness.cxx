@@ -51,6 +51,7 @@
 namespace
 {
 using ManifoldHarmonicsTest::Check;
+using ManifoldHarmonicsTest::Perturb;
 
 //------------------------------------------------------------------------------
 // The text of a VTK message without its "ERROR: In file, line" prefix, which the test harness
@@ -91,6 +92,7 @@ vtkSmartPointer<vtkPolyData> Sphere(int resolution, double radius = 1.0)
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->DeepCopy(source->GetOutput());
   out->GetPointData()->Initialize();
+  Perturb(out->GetPoints());
   return out;
 }
 
@@ -110,6 +112,7 @@ vtkSmartPointer<vtkPolyData> Plane(int n)
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->DeepCopy(triangles->GetOutput());
   out->GetPointData()->Initialize();
+  Perturb(out->GetPoints());
   return out;
 }
 
@@ -129,6 +132,7 @@ vtkSmartPointer<vtkPolyData> Soup(const std::vector<std::array<double, 3>>& xyz,
   {
     polys->InsertNextCell(static_cast<vtkIdType>(c.size()), c.data());
   }
+  Perturb(points);
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->SetPoints(points);
   out->SetPolys(polys);
