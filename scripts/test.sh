@@ -44,7 +44,7 @@ cmake -S "${source_dir}" -B "${build_dir}" \
   -DMANIFOLDHARMONICS_USE_PARAVIEW=ON \
   -DParaView_DIR="${cmake_dir}"
 cmake --build "${build_dir}" -j "${jobs}"
-(cd "${build_dir}" && run_ctest --output-on-failure) || status=1
+(cd "${build_dir}" && run_ctest --output-on-failure -j "${jobs}") || status=1
 
 echo "=== Plain VTK build: ${build_dir}/vtk-only"
 cmake -S "${source_dir}" -B "${build_dir}/vtk-only" \
@@ -55,7 +55,7 @@ cmake -S "${source_dir}" -B "${build_dir}/vtk-only" \
   -DMANIFOLDHARMONICS_BUILD_BENCH=OFF \
   -DVTK_DIR="${cmake_dir}/vtk"
 cmake --build "${build_dir}/vtk-only" -j "${jobs}"
-(cd "${build_dir}/vtk-only" && run_ctest --output-on-failure) || status=1
+(cd "${build_dir}/vtk-only" && run_ctest --output-on-failure -j "${jobs}") || status=1
 
 if [ "${SKIP_SANITIZE:-0}" != 1 ]; then
   sanitize_dir="${build_dir}/sanitize"

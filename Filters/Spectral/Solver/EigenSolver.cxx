@@ -270,33 +270,23 @@ Vector ConstantNullVector(const SparseMatrix& M)
 }
 
 /**
- * DenseEigenpairs with the constant null vector z deflated: the m smallest pairs, (0, z) first,
- * then the m - 1 smallest of the pencil restricted to the M-orthogonal complement of z.
+ * The pairs of the pencil restricted to the M-orthogonal complement of z: (0, z), then the
+ * m - 1 smallest of the complement.
  *
  * The complement {h : w^T h = 0}, w = M z, has the basis C of the columns e_i - (w_i / w_p) e_p,
  * i != p, with p the point of smallest sum_j |L_pj| / w_p (a large mass and small weights of
- * either sign, the most regular point): C^T L C and C^T M C add to each row i w_i / w_p times row p, so the rows of
- * tiny mass and huge weights (a scan's near-coincident points, cotangents up to 1e8) stay as
- * graded as in L and M and no huge weight spreads to the others, and the dense solve (with its
- * fallbacks for graded pencils) keeps its accuracy on them. (A basis of eigenvectors would mix
- * in the top of the spectrum, 1e17 times lambda_1 on such debris, and its rounding.) The pairs
- * are h = C x; their residuals in (L, M) lie along M z, of the size of the rounding of L's row
- * sums (L z = 0 but for it), which the final check measures.
+ * either sign, the most regular point): C^T L C and C^T M C add to each row i w_i / w_p times
+ * row p, so the rows of tiny mass and huge weights (a scan's near-coincident points) stay
+ * graded, and the dense solve (with its fallbacks for graded pencils) keeps much of its
+ * accuracy on them. The pairs are h = C x.
  */
-EigenResult DeflatedDenseEigenpairs(const SparseMatrix& L,
+EigenResult ComplementEigenpairs(const SparseMatrix& L,
   const SparseMatrix& M,
+  const Vector& z,
   int m,
-  const EigenOptions& options)
+  double tolerance)
 {
   const Eigen::Index n = L.rows();
-  const Vector z = ConstantNullVector(M);
-  EigenResult result;
-  result.Eigenvalues = Vector::Zero(1);
-  result.Eigenvectors = z;
-  if (m == 1)
-  {
-    return result;
-  }
   const Vector w = M * z;
   const Vector weights = L.cwiseAbs() * Vector::Ones(n);
   Eigen::Index p = 0;
@@ -314,12 +304,60 @@ EigenResult DeflatedDenseEigenpairs(const SparseMatrix& L,
   C.setFromTriplets(entries.begin(), entries.end());
   const SparseMatrix Lc = SparseMatrix(C.transpose() * L * C).pruned();
   const SparseMatrix Mc = SparseMatrix(C.transpose() * M * C).pruned();
-  const EigenResult complement = DenseEigenpairs(Lc, Mc, 0, m - 1, options.BackwardErrorTolerance);
-  result.Eigenvalues.conservativeResize(m);
-  result.Eigenvalues.tail(m - 1) = complement.Eigenvalues;
-  result.Eigenvectors.conservativeResize(Eigen::NoChange, m);
-  result.Eigenvectors.rightCols(m - 1) = C * complement.Eigenvectors;
+  const EigenResult complement = DenseEigenpairs(Lc, Mc, 0, m - 1, tolerance);
+  EigenResult result;
+  result.Eigenvalues.resize(m);
+  result.Eigenvalues << 0.0, complement.Eigenvalues;
+  result.Eigenvectors.resize(n, m);
+  result.Eigenvectors << z, C * complement.Eigenvectors;
   return result;
+}
+
+/**
+ * DenseEigenpairs with the constant null vector z deflated: the m smallest pairs, (0, z) first,
+ * then the m - 1 smallest of the pencil in the M-orthogonal complement of z.
+ *
+ * The dense solve computes every pair, so the complement is the span of the pairs but the
+ * lowest, whose eigenvector v_0 differs from z by the rounding of L (L z = 0 but for the
+ * rounding of its row sums): the m - 1 pairs above it, each made M-orthogonal to z (h - z z^T M h,
+ * normalized), are the complement's pairs up to ||z - v_0||_M, with the accuracy the dense solve
+ * and its fallbacks for graded pencils had on them. Where that costs a pair its backward error
+ * (a scan's debris, whose rounded operators move v_0 far from z), the pencil restricted to the
+ * complement is solved instead (ComplementEigenpairs), and the set with the smaller worst
+ * backward error is kept; the final check measures it.
+ */
+EigenResult DeflatedDenseEigenpairs(const SparseMatrix& L,
+  const SparseMatrix& M,
+  int m,
+  const EigenOptions& options)
+{
+  const Vector z = ConstantNullVector(M);
+  EigenResult projected = DenseEigenpairs(L, M, 0, m, options.BackwardErrorTolerance);
+  projected.Eigenvalues[0] = 0.0;
+  projected.Eigenvectors.col(0) = z;
+  if (m == 1)
+  {
+    return projected;
+  }
+  // One product of BlockProducts.h for all the columns: sums in an order that does not depend
+  // on where the vectors lie in memory, so the solve repeats its result to the last bit.
+  auto others = projected.Eigenvectors.rightCols(m - 1);
+  SubtractProduct(others, z, TransposeProduct(M * z, others));
+  const DenseMatrix massOthers = M * others;
+  for (int k = 0; k < m - 1; ++k)
+  {
+    others.col(k) /= std::sqrt(TransposeProduct(others.col(k), massOthers.col(k))(0, 0));
+  }
+  const double worst =
+    BackwardErrors(L, M, projected.Eigenvalues, projected.Eigenvectors).maxCoeff();
+  if (worst <= options.BackwardErrorTolerance)
+  {
+    return projected;
+  }
+  EigenResult restricted = ComplementEigenpairs(L, M, z, m, options.BackwardErrorTolerance);
+  const double other =
+    BackwardErrors(L, M, restricted.Eigenvalues, restricted.Eigenvectors).maxCoeff();
+  return other < worst ? restricted : projected;
 }
 
 /// The dense path: problems of at most DenseThreshold unknowns, or with m > n / 3.

@@ -14,6 +14,7 @@
 #define spectral_MassMatrix_h
 
 #include "Common/Mesh.h"
+#include "Solver/BlockProducts.h"
 
 namespace spectral
 {
@@ -36,7 +37,10 @@ struct MassMatrix
    */
   const DenseMatrix* Deflation = nullptr;
 
-  /// W -= Z (Z^T M W) for the null vectors Z (nothing without them).
+  /// W -= Z (Z^T M W) for the null vectors Z (nothing without them), with the products of
+  /// BlockProducts.h, whose sums run in an order that does not depend on where W lies in memory
+  /// (Eigen's vectorized reductions start at an aligned address), so that a solve repeats its
+  /// result to the last bit.
   void Deflate(Eigen::Ref<DenseMatrix> W) const
   {
     if (!this->Deflation || this->Deflation->cols() == 0)
@@ -44,10 +48,9 @@ struct MassMatrix
       return;
     }
     const DenseMatrix& Z = *this->Deflation;
-    const DenseMatrix coefficients = this->Identity
-      ? DenseMatrix(Z.transpose() * W)
-      : DenseMatrix((this->Matrix * Z).transpose() * W);
-    W -= Z * coefficients;
+    const DenseMatrix coefficients =
+      this->Identity ? TransposeProduct(Z, W) : TransposeProduct(DenseMatrix(this->Matrix * Z), W);
+    SubtractProduct(W, Z, coefficients);
   }
 
   /// M W in `out`; W itself (no copy) for the identity.

@@ -253,7 +253,9 @@ bool TestShapeDNAFromEigenvaluesOnly()
     vtkDataArray::SafeDownCast(full->GetShapeDNAOutput()->GetColumnByName("ScaledEigenvalue"));
   vtkDataArray* b =
     vtkDataArray::SafeDownCast(spectrum->GetShapeDNAOutput()->GetColumnByName("ScaledEigenvalue"));
-  bool ok = Check(a && b && RelativeDifference(b, a) == 0.0,
+  // The same solve up to rounding (1e-15 relative between two runs in one process: the heap's
+  // layout moves where the solver's sums start).
+  bool ok = Check(a && b && RelativeDifference(b, a) <= 1e-12,
     "ShapeDNA from an EigenvaluesOnly basis differs from the full basis's");
   vtkNew<vtkTest::ErrorObserver> warnings;
   spectrum->AddObserver(vtkCommand::WarningEvent, warnings);

@@ -479,7 +479,14 @@ bool TestPointClouds()
               << " cloud: worst |lambda - l(l+1)| / l(l+1), l <= 3: " << worst << std::endl;
     ok &= Check(worst < 0.03, "the sphere's eigenvalues l(l+1) within 3%");
   }
-  ok &= Check(spectra[0] == spectra[1], "vertex cells or none: the same spectrum");
+  double spread = 0.0;
+  for (std::size_t k = 1; k < spectra[0].size(); ++k)
+  {
+    spread = std::max(spread, std::abs(spectra[0][k] - spectra[1][k]) / spectra[0][k]);
+  }
+  // The same solve up to rounding (1e-15 relative between two runs in one process).
+  ok &= Check(spectra[0][0] == 0.0 && spectra[1][0] == 0.0 && spread <= 1e-12,
+    "vertex cells or none: the same spectrum");
 
   // Radial RMS error of the noisy cloud, then low-passed (cutoff omega = 4: l <= 3).
   const auto radialError = [](vtkPoints* points)
