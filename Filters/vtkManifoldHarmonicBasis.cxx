@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
@@ -53,11 +54,6 @@ static_assert(
 static_assert(
   vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS == spectral::DefaultNumberOfNeighbors,
   "the default number of neighbours has its home in Spectral/Common/Defaults.h");
-static_assert(
-  vtkManifoldHarmonicBasis::NEUMANN == static_cast<int>(spectral::BoundaryCondition::Neumann) &&
-    vtkManifoldHarmonicBasis::DIRICHLET == static_cast<int>(spectral::BoundaryCondition::Dirichlet),
-  "the boundary conditions have their home in Spectral/Operators/Laplacian.h");
-
 namespace
 {
 //------------------------------------------------------------------------------
@@ -386,19 +382,47 @@ constexpr const char* KeptSeamsIgnored =
   "run.";
 
 //------------------------------------------------------------------------------
+// The cells of `input` in the core's form: polygons of a vtkPolyData through
+// vtkTriangleFilter (concave ones too), other point sets' cells through ToCoreMesh.
+vtkManifoldHarmonicsArrays::CoreMesh CoreCells(vtkManifoldHarmonicBasis* self, vtkPointSet* input)
+{
+  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
+  vtkSmartPointer<vtkPointSet> triangulated = input;
+  if (polygons && input->GetNumberOfPoints() > 0 &&
+    polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
+  {
+    triangulated = Triangulate(self, polygons);
+  }
+  return vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
+}
+
+//------------------------------------------------------------------------------
+// What the conversion of the cells changed or left out, and how a point cloud is solved.
+void WarnAboutCells(vtkManifoldHarmonicBasis* self,
+  const vtkManifoldHarmonicsArrays::CoreMesh& cells)
+{
+  for (const std::string& warning : cells.Warnings())
+  {
+    vtkWarningWithObjectMacro(self, << warning);
+  }
+  const std::string cloud = cells.PointCloudWarning(self->GetNumberOfNeighbors());
+  if (!cloud.empty())
+  {
+    vtkWarningWithObjectMacro(self, << cloud);
+  }
+}
+
+//------------------------------------------------------------------------------
 // The settings of the filter as options of the core's entry point.
 spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
 {
   spectral::BasisOptions options;
   options.NumberOfHarmonics = self->GetNumberOfHarmonics();
-  options.Operators.Laplacian = self->GetLaplacian() == vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY
-    ? spectral::LaplacianKind::IntrinsicDelaunay
-    : spectral::LaplacianKind::Cotangent;
+  namespace Enums = vtkManifoldHarmonicsEnums;
+  options.Operators.Laplacian = Enums::To(Enums::Laplacian, self->GetLaplacian(), "Laplacian");
   options.Operators.Boundary =
-    static_cast<spectral::BoundaryCondition>(self->GetBoundaryCondition());
-  options.Operators.Mass = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT
-    ? spectral::MassKind::Consistent
-    : spectral::MassKind::Lumped;
+    Enums::To(Enums::BoundaryCondition, self->GetBoundaryCondition(), "BoundaryCondition");
+  options.Operators.Mass = Enums::To(Enums::MassMatrix, self->GetMassMatrix(), "MassMatrix");
   options.Solver.BandSize = self->GetBandSize();
   options.Solver.Tolerance = self->GetTolerance();
   options.Solver.MaxIterations = self->GetMaxIterations();
@@ -408,7 +432,8 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.EigenvaluesOnly = self->GetEigenvaluesOnly();
   options.LowerFrequency = self->GetFrequencyWindow()[0];
   options.UpperFrequency = self->GetFrequencyWindow()[1];
-  options.BytesPerValue = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT ? 4 : 8;
+  options.BytesPerValue =
+    Enums::To(Enums::BasisPrecision, self->GetBasisPrecision(), "BasisPrecision");
   // A limit below one byte still limits (0 would mean "ask the system").
   options.MemoryLimit = self->GetMemoryLimit() > 0.0
     ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
@@ -417,33 +442,183 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
 }
 
 //------------------------------------------------------------------------------
-// A monitor that reports the core's progress, steps and warnings through the filter and polls
-// its abort flag. The core's progress [0, 1] becomes [0, 0.95]; writing the arrays is the rest.
-spectral::Monitor FilterMonitor(vtkManifoldHarmonicBasis* self)
+// The first setting the SLEPc solver does not support, or "".
+std::string SlepcUnsupported(vtkManifoldHarmonicBasis* self)
 {
-  spectral::Monitor monitor;
-  monitor.Progress = [self](double fraction) { self->UpdateProgress(0.95 * fraction); };
-  monitor.Cancelled = [self]() { return self->GetAbortExecute() != 0; };
-  monitor.Stage = [self](const char* stage) { self->SetProgressText(stage); };
-  monitor.Warning = [self](const std::string& text) { vtkWarningWithObjectMacro(self, << text); };
-  return monitor;
+  if (self->GetLaplacian() != vtkManifoldHarmonicBasis::COTANGENT)
+  {
+    return "Laplacian Intrinsic Delaunay";
+  }
+  if (self->GetEigenvaluesOnly())
+  {
+    return "EigenvaluesOnly";
+  }
+  if (self->GetFrequencyWindow()[1] > 0.0)
+  {
+    return "FrequencyWindow";
+  }
+  if (self->GetMinimumComponentSize() > 0)
+  {
+    return "MinimumComponentSize";
+  }
+  if (self->GetBoundaryCondition() != vtkManifoldHarmonicBasis::NEUMANN)
+  {
+    return "BoundaryCondition Dirichlet";
+  }
+  return std::string();
+}
+
+#ifdef MANIFOLDHARMONICS_HAS_SLEPC
+//------------------------------------------------------------------------------
+// Whether every process's piece can be used (collective): pieces that cannot be, and point
+// clouds (points on some process, cells on none), are refused on every process alike.
+bool SlepcPiecesUsable(vtkManifoldHarmonicBasis* self,
+  vtkMultiProcessController* controller,
+  const vtkManifoldHarmonicsArrays::CoreMesh& cells,
+  vtkPointSet* input)
+{
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  if (distributed && !self->GetWeldSeams() && controller->GetLocalProcessId() == 0)
+  {
+    vtkWarningWithObjectMacro(self, << KeptSeamsIgnored);
+  }
+  const auto count = [controller, distributed](bool flag) {
+    return distributed ? vtkManifoldHarmonicsParallel::CountRanks(controller, flag) : flag ? 1 : 0;
+  };
+  const std::string problem = cells.Problem();
+  const int unusable = count(!problem.empty());
+  const int withCells = count(cells.HasCells());
+  const int withPoints = count(input->GetNumberOfPoints() > 0);
+  if (unusable > 0)
+  {
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(self, << "The SLEPc solver cannot use this piece: " << problem);
+    }
+    else
+    {
+      vtkErrorWithObjectMacro(
+        self, << "The SLEPc solver stopped: another process's piece cannot be used.");
+    }
+    return false;
+  }
+  if (withCells == 0 && withPoints > 0)
+  {
+    vtkErrorWithObjectMacro(self,
+      << "The SLEPc solver does not take point clouds (points without triangles or "
+         "tetrahedra) yet: choose the Built-in solver in a serial run.");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// The settings of the filter as the SLEPc solver's, its progress, steps, warnings and abort
+// flag through the filter (progress [0, 0.95]; writing the arrays is the rest).
+vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self)
+{
+  vtkManifoldHarmonicsSlepc::Settings settings;
+  settings.NumberOfHarmonics = self->GetNumberOfHarmonics();
+  settings.ConsistentMass = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT;
+  settings.Partitions = self->GetSlepcPartitions();
+  settings.Options = self->GetSlepcOptions();
+  settings.Tolerance = self->GetTolerance();
+  settings.MaxIterations = self->GetMaxIterations();
+  settings.WeldSeams = self->GetWeldSeams();
+  settings.SeamTolerance = self->GetSeamTolerance();
+  settings.Progress = [self](double fraction) { self->UpdateProgress(0.95 * fraction); };
+  settings.Stage = [self](const char* stage) { self->SetProgressText(stage); };
+  settings.Cancelled = [self]() { return self->GetAbortExecute() != 0; };
+  settings.Warning = [self](const std::string& text) { vtkWarningWithObjectMacro(self, << text); };
+  return settings;
+}
+
+//------------------------------------------------------------------------------
+// The SLEPc solve of this process's piece (collective) and its rows on the output; the quality
+// figures as field data. \throws spectral::Cancelled after an abort, std::exception on errors.
+void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
+  vtkMultiProcessController* controller,
+  const spectral::TriangleMesh& mesh,
+  vtkPointSet* input,
+  vtkPointSet* output)
+{
+  vtkManifoldHarmonicsSlepc::Result result;
+  try
+  {
+    result = vtkManifoldHarmonicsSlepc::Solve(controller, mesh, SlepcSettings(self));
+  }
+  catch (const vtkManifoldHarmonicsSlepc::Cancelled&)
+  {
+    throw spectral::Cancelled();
+  }
+  AddPieceArrays(
+    output, input, result.Rows, self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
+  for (const auto& figure :
+    { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
+      std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual),
+      std::make_pair(vtkManifoldHarmonicsNames::OrthonormalityError, result.OrthonormalityError),
+      std::make_pair(
+        vtkManifoldHarmonicsNames::InertiaCount, static_cast<double>(result.InertiaCount)) })
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(figure.first);
+    array->InsertNextValue(figure.second);
+    output->GetFieldData()->AddArray(array);
+  }
+  vtkDebugWithObjectMacro(self,
+    << "SLEPc: " << result.GlobalPoints << " points, " << result.OwnedPoints << " owned here, "
+    << result.Computed << " pairs in [0, " << result.UpperEnd << "), " << result.Shifts
+    << " shifts");
+  self->UpdateProgress(1.0);
+}
+#endif
+
+//------------------------------------------------------------------------------
+// Welds the seams (when `weld`), solves, and writes the basis onto a shallow copy of `input`.
+void SolveAndWrite(vtkManifoldHarmonicBasis* self,
+  const vtkManifoldHarmonicsArrays::CoreMesh& cells,
+  vtkPointSet* input,
+  vtkPointSet* output,
+  bool weld,
+  const spectral::Monitor& monitor)
+{
+  // The seam rule of every path: coincident points are one point (their copies get its rows).
+  vtkManifoldHarmonicsParallel::Welding welding;
+  spectral::TriangleMesh welded;
+  const spectral::TriangleMesh& mesh =
+    weld && WeldMesh(cells.Mesh, input, self->GetSeamTolerance(), welding, welded) ? welded
+                                                                                   : cells.Mesh;
+  const spectral::BasisResult basis = spectral::ComputeBasis(mesh, CoreOptions(self), monitor);
+  self->SetProgressText("Write");
+  output->ShallowCopy(input);
+  const vtkIdType numPts = input->GetNumberOfPoints();
+  AddBasisArrays(output,
+    basis.Pairs,
+    Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
+    basis.LumpedMass,
+    self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
+  if (welding.Merged())
+  {
+    AddPointGhosts(output, input, WeldedDuplicates(welding));
+  }
+  self->UpdateProgress(1.0);
 }
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
-  : NumberOfHarmonics(DEFAULT_NUMBER_OF_HARMONICS)
+  : vtkManifoldHarmonicsAlgorithm(POINT_SET_ONLY)
+  , NumberOfHarmonics(DEFAULT_NUMBER_OF_HARMONICS)
   , MassMatrix(LUMPED)
   , Laplacian(COTANGENT)
   , BoundaryCondition(NEUMANN)
-  , BandSize(0)
-  , Tolerance(1e-11)
-  , MaxIterations(1000)
+  , BandSize(spectral::EigenOptions().BandSize)
+  , Tolerance(spectral::EigenOptions().Tolerance)
+  , MaxIterations(spectral::EigenOptions().MaxIterations)
   , BasisPrecision(DOUBLE)
   , MemoryLimit(0.0)
   , MinimumComponentSize(0)
   , NumberOfNeighbors(DEFAULT_NUMBER_OF_NEIGHBORS)
-  , NumberOfThreads(0)
   , EigenvaluesOnly(false)
   , Solver(BUILT_IN)
   , SlepcPartitions(1)
@@ -483,12 +658,10 @@ const char* vtkManifoldHarmonicBasis::EigenvaluesArrayName()
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
+  vtkPointSet* output,
+  vtkTable* vtkNotUsed(table))
 {
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkPointSet* output = vtkPointSet::GetData(outputVector);
   if (this->Solver == SLEPC)
   {
     // Every process takes part, with or without cells.
@@ -513,7 +686,6 @@ int vtkManifoldHarmonicBasis::RequestData(vtkInformation* vtkNotUsed(request),
                       << ") is held by several processes. Choose Solver SLEPc (volumes), "
                          "compute its harmonics in a serial run, or gather it on one process "
                          "first (Merge Blocks, Reduction).");
-        output->Initialize();
         return 0;
       }
       return this->ComputeDistributedBasis(controller, surface, vtkPolyData::SafeDownCast(output));
@@ -538,7 +710,6 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
     // Refused on every process alike, before any collective step.
     vtkErrorMacro(<< "EigenvaluesOnly is not available in distributed runs yet: turn it off, or "
                      "compute the spectrum in a serial run.");
-    output->Initialize();
     return 0;
   }
   const bool hasSurface = input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0;
@@ -580,7 +751,6 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   {
     // Fail on every process (also after a cancel), so that no downstream stage runs on some
     // processes only and waits for the others.
-    output->Initialize();
     if (controller->GetLocalProcessId() == 0 && status == 0)
     {
       return 0;
@@ -595,30 +765,9 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
 //------------------------------------------------------------------------------
 int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet* output)
 {
-  output->Initialize();
   // The settings the SLEPc solver does not have, refused alike on every process before any
   // collective step.
-  std::string unsupported;
-  if (this->Laplacian != COTANGENT)
-  {
-    unsupported = "Laplacian Intrinsic Delaunay";
-  }
-  else if (this->EigenvaluesOnly)
-  {
-    unsupported = "EigenvaluesOnly";
-  }
-  else if (this->FrequencyWindow[1] > 0.0)
-  {
-    unsupported = "FrequencyWindow";
-  }
-  else if (this->MinimumComponentSize > 0)
-  {
-    unsupported = "MinimumComponentSize";
-  }
-  else if (this->BoundaryCondition != NEUMANN)
-  {
-    unsupported = "BoundaryCondition Dirichlet";
-  }
+  const std::string unsupported = ::SlepcUnsupported(this);
   if (!unsupported.empty())
   {
     vtkErrorMacro(<< "The SLEPc solver does not support " << unsupported
@@ -626,102 +775,21 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
     return 0;
   }
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
-  vtkManifoldHarmonicsSlepc::Settings settings;
-  settings.NumberOfHarmonics = this->NumberOfHarmonics;
-  settings.ConsistentMass = this->MassMatrix == CONSISTENT;
-  settings.Partitions = this->SlepcPartitions;
-  settings.Options = this->SlepcOptions;
-  settings.Tolerance = this->Tolerance;
-  settings.MaxIterations = this->MaxIterations;
-  settings.WeldSeams = this->WeldSeams;
-  settings.SeamTolerance = this->SeamTolerance;
-  settings.Progress = [this](double fraction) { this->UpdateProgress(0.95 * fraction); };
-  settings.Stage = [this](const char* stage) { this->SetProgressText(stage); };
-  settings.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
-  settings.Warning = [this](const std::string& text) { vtkWarningMacro(<< text); };
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  // The cells of this piece in the core's form: polygons of a vtkPolyData through
-  // vtkTriangleFilter, other cells through ToCoreMesh (ghost cells left out by both).
-  vtkSmartPointer<vtkPointSet> triangulated = input;
-  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
-  if (polygons && polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
-  {
-    triangulated = ::Triangulate(this, polygons);
-  }
-  const vtkManifoldHarmonicsArrays::CoreMesh cells =
-    vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
+  const vtkManifoldHarmonicsArrays::CoreMesh cells = ::CoreCells(this, input);
   for (const std::string& warning : cells.Warnings())
   {
     vtkWarningMacro(<< warning);
   }
-  // Pieces that cannot be used, and point clouds (points on some process, cells on none), are
-  // refused on every process alike (the counts are collective).
-  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
-  if (distributed && !this->WeldSeams && controller->GetLocalProcessId() == 0)
+  if (!::SlepcPiecesUsable(this, controller, cells, input))
   {
-    vtkWarningMacro(<< KeptSeamsIgnored);
-  }
-  const auto count = [controller, distributed](bool flag) {
-    return distributed ? vtkManifoldHarmonicsParallel::CountRanks(controller, flag) : flag ? 1 : 0;
-  };
-  const std::string problem = cells.Problem();
-  const int unusable = count(!problem.empty());
-  const int withCells = count(cells.HasCells());
-  const int withPoints = count(input->GetNumberOfPoints() > 0);
-  if (unusable > 0)
-  {
-    if (!problem.empty())
-    {
-      vtkErrorMacro(<< "The SLEPc solver cannot use this piece: " << problem);
-    }
-    else
-    {
-      vtkErrorMacro(<< "The SLEPc solver stopped: another process's piece cannot be used.");
-    }
     return 0;
   }
-  if (withCells == 0 && withPoints > 0)
-  {
-    vtkErrorMacro(<< "The SLEPc solver does not take point clouds (points without triangles or "
-                     "tetrahedra) yet: choose the Built-in solver in a serial run.");
-    return 0;
-  }
-  try
-  {
-    const vtkManifoldHarmonicsSlepc::Result result =
-      vtkManifoldHarmonicsSlepc::Solve(controller, cells.Mesh, settings);
-    ::AddPieceArrays(output, input, result.Rows, this->BasisPrecision == FLOAT);
-    for (const auto& figure :
-      { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
-        std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual),
-        std::make_pair(vtkManifoldHarmonicsNames::OrthonormalityError, result.OrthonormalityError),
-        std::make_pair(
-          vtkManifoldHarmonicsNames::InertiaCount, static_cast<double>(result.InertiaCount)) })
-    {
-      vtkNew<vtkDoubleArray> array;
-      array->SetName(figure.first);
-      array->InsertNextValue(figure.second);
-      output->GetFieldData()->AddArray(array);
-    }
-    vtkDebugMacro(<< "SLEPc: " << result.GlobalPoints << " points, " << result.OwnedPoints
-                  << " owned here, " << result.Computed << " pairs in [0, " << result.UpperEnd
-                  << "), " << result.Shifts << " shifts");
-    this->UpdateProgress(1.0);
-    return 1;
-  }
-  catch (const vtkManifoldHarmonicsSlepc::Cancelled&)
-  {
-    output->Initialize();
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "The SLEPc solver failed: " << e.what());
-  }
-  output->Initialize();
-  return 0;
+  return this->Guard([&]() { ::SolveWithSlepc(this, controller, cells.Mesh, input, output); }) ? 1
+                                                                                               : 0;
 #else
   (void)input;
+  (void)output;
   vtkErrorMacro(<< "This build of the module has no SLEPc solver (SLEPc was not found when it "
                    "was built): choose the Built-in solver, or rebuild with libslepc-real-dev.");
   return 0;
@@ -736,23 +804,12 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
                 << this->BandSize << ", tolerance " << this->Tolerance << ", max iterations "
                 << this->MaxIterations << ", basis precision " << this->BasisPrecision
                 << ", memory limit " << this->MemoryLimit << " MiB");
-
   const vtkIdType numPts = input->GetNumberOfPoints();
-  // Polygons of a vtkPolyData through vtkTriangleFilter (concave ones too); other point sets'
-  // cells through ToCoreMesh.
-  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
-  vtkSmartPointer<vtkPointSet> triangulated = input;
-  if (polygons && numPts > 0 && polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
-  {
-    triangulated = ::Triangulate(this, polygons);
-  }
-  const vtkManifoldHarmonicsArrays::CoreMesh cells =
-    vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
+  const vtkManifoldHarmonicsArrays::CoreMesh cells = ::CoreCells(this, input);
   const std::string problem = cells.Problem();
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
-    output->Initialize();
     return 0;
   }
   if (numPts == 0 || (!cells.HasCells() && !cells.IsPointCloud()))
@@ -762,69 +819,34 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
     output->ShallowCopy(input);
     return 1;
   }
-  for (const std::string& warning : cells.Warnings())
-  {
-    vtkWarningMacro(<< warning);
-  }
-  const std::string cloud = cells.PointCloudWarning(this->NumberOfNeighbors);
-  if (!cloud.empty())
-  {
-    vtkWarningMacro(<< cloud);
-  }
+  ::WarnAboutCells(this, cells);
   if (numPts > VTK_INT_MAX)
   {
     vtkErrorMacro(<< "Too many points: " << numPts << " (at most " << VTK_INT_MAX << ").");
     return 0;
   }
+  this->SolvedPoints = numPts;
+  const spectral::Monitor monitor = this->MakeMonitor(0.95);
+  return this->Guard([&]() { ::SolveAndWrite(this, cells, input, output, weld, monitor); }) ? 1 : 0;
+}
 
-  try
+//------------------------------------------------------------------------------
+std::string vtkManifoldHarmonicBasis::DescribeFailure(const std::exception& e)
+{
+  if (const auto* memory = dynamic_cast<const spectral::InsufficientMemory*>(&e))
   {
-    // The seam rule of every path: coincident points are one point (their copies get its rows).
-    vtkManifoldHarmonicsParallel::Welding welding;
-    spectral::TriangleMesh welded;
-    const spectral::TriangleMesh& mesh =
-      weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, welding, welded) ? welded
-                                                                                  : cells.Mesh;
-    const spectral::BasisResult basis =
-      spectral::ComputeBasis(mesh, ::CoreOptions(this), ::FilterMonitor(this));
-    this->SetProgressText("Write");
-    output->ShallowCopy(input);
-    ::AddBasisArrays(output,
-      basis.Pairs,
-      ::Targets(
-        basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
-      basis.LumpedMass,
-      this->BasisPrecision == FLOAT);
-    if (welding.Merged())
-    {
-      ::AddPointGhosts(output, input, ::WeldedDuplicates(welding));
-    }
-    this->UpdateProgress(1.0);
-    return 1;
+    return ::MemoryProblem(this, this->SolvedPoints, *memory);
   }
-  catch (const spectral::InsufficientMemory& e)
+  if (dynamic_cast<const spectral::InvalidInput*>(&e))
   {
-    vtkErrorMacro(<< ::MemoryProblem(this, numPts, e));
+    return std::string("Invalid input: ") + e.what();
   }
-  catch (const spectral::Cancelled&)
+  if (const auto* solver = dynamic_cast<const spectral::SolverFailure*>(&e))
   {
-    output->Initialize();
-    return 1;
+    return "Eigensolver failed (" + std::to_string(solver->Converged) +
+      " pairs converged): " + e.what();
   }
-  catch (const spectral::InvalidInput& e)
-  {
-    vtkErrorMacro(<< "Invalid input: " << e.what());
-  }
-  catch (const spectral::SolverFailure& e)
-  {
-    vtkErrorMacro(<< "Eigensolver failed (" << e.Converged << " pairs converged): " << e.what());
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Manifold harmonics failed: " << e.what());
-  }
-  output->Initialize();
-  return 0;
+  return this->Superclass::DescribeFailure(e);
 }
 
 //------------------------------------------------------------------------------
@@ -842,37 +864,29 @@ void vtkManifoldHarmonicBasis::SetNumberOfHarmonics(int m)
 void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << " (default "
-     << DEFAULT_NUMBER_OF_HARMONICS << ")\n";
-  os << indent << "Mass Matrix: " << (this->MassMatrix == CONSISTENT ? "Consistent" : "Lumped")
-     << " (default Lumped)\n";
-  os << indent << "Laplacian: "
-     << (this->Laplacian == INTRINSIC_DELAUNAY ? "Intrinsic Delaunay" : "Cotangent")
-     << " (default Cotangent)\n";
+  namespace Enums = vtkManifoldHarmonicsEnums;
+  os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << "\n";
+  os << indent << "Mass Matrix: " << Enums::Name(Enums::MassMatrix, this->MassMatrix) << "\n";
+  os << indent << "Laplacian: " << Enums::Name(Enums::Laplacian, this->Laplacian) << "\n";
   os << indent
-     << "Boundary Condition: " << (this->BoundaryCondition == DIRICHLET ? "Dirichlet" : "Neumann")
-     << " (default Neumann)\n";
-  os << indent << "Band Size: " << this->BandSize << " (default 0, automatic)\n";
-  os << indent << "Tolerance: " << this->Tolerance << " (default 1e-11)\n";
-  os << indent << "Max Iterations: " << this->MaxIterations << " (default 1000)\n";
-  os << indent << "Basis Precision: " << (this->BasisPrecision == FLOAT ? "Float" : "Double")
-     << " (default Double)\n";
-  os << indent << "Memory Limit: " << this->MemoryLimit
-     << " MiB (default 0, the memory the system reports available)\n";
-  os << indent << "Minimum Component Size: " << this->MinimumComponentSize
-     << " (default 0, every component)\n";
+     << "Boundary Condition: " << Enums::Name(Enums::BoundaryCondition, this->BoundaryCondition)
+     << "\n";
+  os << indent << "Band Size: " << this->BandSize
+     << (this->BandSize == 0 ? " (automatic)\n" : "\n");
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "Max Iterations: " << this->MaxIterations << "\n";
+  os << indent << "Basis Precision: " << Enums::Name(Enums::BasisPrecision, this->BasisPrecision)
+     << "\n";
+  os << indent << "Memory Limit: " << this->MemoryLimit << " MiB"
+     << (this->MemoryLimit > 0.0 ? "\n" : " (the memory the system reports available)\n");
+  os << indent << "Minimum Component Size: " << this->MinimumComponentSize << "\n";
   os << indent << "Number Of Neighbors: " << this->NumberOfNeighbors << "\n";
-  os << indent << "Number Of Threads: " << this->NumberOfThreads << " (default 0, every core)\n";
-  os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off")
-     << " (default off)\n";
-  os << indent << "Solver: " << (this->Solver == SLEPC ? "SLEPc" : "Built-in")
-     << " (default Built-in)\n";
-  os << indent << "Slepc Partitions: " << this->SlepcPartitions << " (default 1)\n";
-  os << indent << "Slepc Options: \"" << this->SlepcOptions << "\" (default none)\n";
+  os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off") << "\n";
+  os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
+  os << indent << "Slepc Partitions: " << this->SlepcPartitions << "\n";
+  os << indent << "Slepc Options: \"" << this->SlepcOptions << "\"\n";
   os << indent << "Frequency Window: [" << this->FrequencyWindow[0] << ", "
-     << this->FrequencyWindow[1] << ") (default [0, 0): off)\n";
-  os << indent << "Weld Seams: " << (this->WeldSeams ? "on" : "off")
-     << " (default on: points within Seam Tolerance are one point)\n";
-  os << indent << "Seam Tolerance: " << this->SeamTolerance << " (default "
-     << vtkManifoldHarmonicsParallel::SeamTolerance << " of the bounding box diagonal)\n";
+     << this->FrequencyWindow[1] << ")" << (this->FrequencyWindow[1] > 0.0 ? "\n" : " (off)\n");
+  os << indent << "Weld Seams: " << (this->WeldSeams ? "on" : "off") << "\n";
+  os << indent << "Seam Tolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
 }

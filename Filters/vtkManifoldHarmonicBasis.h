@@ -21,7 +21,8 @@
  * warning; neighbours split a shared face alike, see vtkManifoldHarmonicsArrays.h). An input
  * that mixes 2-D and 3-D cells, or has cells of another kind (quadratic, polyhedral), is an
  * error naming the counts. Vertices and lines are ignored; a point cloud (points and no cells
- * but vertices) is an error: point clouds are not supported yet. Cells of numerically zero
+ * but vertices) gets the harmonics of Sharp and Crane's point-cloud Laplacian (see
+ * NumberOfNeighbors; Built-in solver, serial runs). Cells of numerically zero
  * area or volume are left out, and points that no remaining cell uses get zero harmonics and
  * zero mass.
  *
@@ -114,8 +115,8 @@
 #ifndef vtkManifoldHarmonicBasis_h
 #define vtkManifoldHarmonicBasis_h
 
+#include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPointSetAlgorithm.h"
 
 #include <string> // For SlepcOptions
 
@@ -123,7 +124,7 @@ class vtkMultiProcessController;
 class vtkPointSet;
 class vtkPolyData;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkPointSetAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicBasis : public vtkManifoldHarmonicsAlgorithm
 {
 public:
   /**
@@ -137,7 +138,7 @@ public:
   /**
    * Standard methods for type information and printing.
    */
-  vtkTypeMacro(vtkManifoldHarmonicBasis, vtkPointSetAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicBasis, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -382,16 +383,6 @@ public:
   vtkGetVector2Macro(FrequencyWindow, double);
   ///@}
 
-  ///@{
-  /**
-   * Threads of the eigensolver's factorizations, solves and block products; 0 uses every core
-   * of the machine. Results do not depend on it beyond round-off. Range [0, VTK_INT_MAX].
-   * Default is 0.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
   /**
    * The eigensolver. BUILT_IN: the module's own (band-by-band shift-invert block Lanczos on
    * CHOLMOD, every option of this filter); in a distributed run, process 0 gathers the surface
@@ -496,7 +487,11 @@ protected:
   vtkManifoldHarmonicBasis();
   ~vtkManifoldHarmonicBasis() override = default;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The stages of a request (see vtkManifoldHarmonicsAlgorithm for errors and aborts).
+  int Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* table) override;
+  const char* GetWorkName() override { return "Manifold harmonics"; }
+  /// The core's exceptions of the eigensolve: memory, solver, input.
+  std::string DescribeFailure(const std::exception& e) override;
 
   /**
    * The basis of the whole `input` into `output` (a serial run, or process 0 of a distributed
@@ -529,7 +524,6 @@ protected:
   double MemoryLimit;
   int MinimumComponentSize;
   int NumberOfNeighbors;
-  int NumberOfThreads;
   bool EigenvaluesOnly;
   double FrequencyWindow[2];
   int Solver;
@@ -539,6 +533,9 @@ protected:
   double SeamTolerance;
 
 private:
+  /// The points of the mesh being solved, for the message of InsufficientMemory.
+  vtkIdType SolvedPoints = 0;
+
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;
   void operator=(const vtkManifoldHarmonicBasis&) = delete;
 };

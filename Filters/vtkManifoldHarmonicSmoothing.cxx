@@ -10,6 +10,7 @@
 #include "vtkManifoldHarmonicBasis.h"
 #include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
@@ -52,7 +53,6 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   : NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
   , CutoffFraction(spectral::DefaultCutoffFraction)
   , BasisPrecision(vtkManifoldHarmonicBasis::DOUBLE)
-  , NumberOfThreads(0)
   , BoundaryCondition(vtkManifoldHarmonicBasis::NEUMANN)
   , NumberOfNeighbors(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_NEIGHBORS)
   , Solver(vtkManifoldHarmonicBasis::BUILT_IN)
@@ -107,20 +107,16 @@ void vtkManifoldHarmonicSmoothing::ForwardWarning(vtkObject*, unsigned long, voi
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
+  vtkPointSet* output,
+  vtkTable* vtkNotUsed(table))
 {
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkPointSet* output = vtkPointSet::GetData(outputVector);
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
   // Nothing to smooth without polygons: pass the input on, as the basis does, rather than let
   // the internal stages report errors about a basis they did not get. (In a distributed run the
   // stages are collective and every process runs them.)
-  const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
-  if (!cells.HasCells() && !cells.IsPointCloud() &&
-    !vtkManifoldHarmonicsParallel::DistributedController())
+  if (!vtkManifoldHarmonicsArrays::HasCellsOrIsPointCloud(input) && !GetDistributedController())
   {
     if (input->GetNumberOfPoints() > 0)
     {
@@ -129,6 +125,42 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
     output->ShallowCopy(input);
     return 1;
   }
+  this->UpdateBasisInput(input);
+  if (!this->UpdateBasis())
+  {
+    return 1; // aborted: the output stays empty
+  }
+  this->UpdateFilter(); // collective: before any process returns
+  if (this->AbortRequested())
+  {
+    return 1;
+  }
+  if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
+  {
+    vtkErrorMacro(<< "The " << this->NumberOfHarmonics
+                  << " harmonic(s) are all constant (one per connected component of the surface, "
+                     "frequency 0): there is nothing to smooth. Raise NumberOfHarmonics.");
+    return 0;
+  }
+  output->ShallowCopy(input);
+  vtkPointSet* filtered = this->Filter->GetOutput();
+  if (filtered->GetNumberOfPoints() != input->GetNumberOfPoints())
+  {
+    if (input->GetNumberOfPoints() == 0)
+    {
+      return 1;
+    }
+    vtkErrorMacro(<< "Manifold harmonic smoothing failed (see the errors above).");
+    return 0;
+  }
+  output->SetPoints(filtered->GetPoints());
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::UpdateBasisInput(vtkPointSet* input)
+{
   // A new input (or the same one modified) recomputes the basis; a new cutoff alone does not.
   // In a distributed run every process executes each stage (they are collective), and every
   // process sees the same parameters and the same kind of input change.
@@ -143,6 +175,11 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
     this->InputData = input;
     this->InputTime = input->GetMTime();
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkManifoldHarmonicSmoothing::UpdateBasis()
+{
   this->SetProgressText("Basis");
   this->Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   this->Basis->SetBasisPrecision(this->BasisPrecision);
@@ -159,51 +196,23 @@ int vtkManifoldHarmonicSmoothing::RequestData(vtkInformation* vtkNotUsed(request
   this->Basis->Update();
   if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
   {
-    // The aborted basis is incomplete: the next execution computes it afresh. An aborted
-    // filter's output is empty (as VTK's executive has it).
+    // The aborted basis is incomplete: the next execution computes it afresh.
     this->Basis->Modified();
-    output->Initialize();
-    return 1;
+    return false;
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::UpdateFilter()
+{
   this->Transform->SetNumberOfThreads(this->NumberOfThreads);
   this->Transform->Update();
   this->UpdateProgress(0.9);
   this->SetProgressText("Spectral filter");
   this->Filter->SetNumberOfThreads(this->NumberOfThreads);
   this->Filter->SetCutoff(this->CutoffFraction);
-  this->Filter->Update(); // collective: before any process returns
-  if (this->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
-  {
-    output->Initialize();
-    return 1;
-  }
-  if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
-  {
-    vtkErrorMacro(<< "The " << this->NumberOfHarmonics
-                  << " harmonic(s) are all constant (one per connected component of the surface, "
-                     "frequency 0): there is nothing to smooth. Raise NumberOfHarmonics.");
-    output->Initialize();
-    return 0;
-  }
-  output->ShallowCopy(input);
-  vtkPointSet* filtered = this->Filter->GetOutput();
-  if (filtered->GetNumberOfPoints() != input->GetNumberOfPoints())
-  {
-    if (input->GetNumberOfPoints() == 0)
-    {
-      return 1;
-    }
-    vtkErrorMacro(<< "Manifold harmonic smoothing failed (see the errors above).");
-    output->Initialize();
-    return 0;
-  }
-  output->SetPoints(filtered->GetPoints());
-  this->UpdateProgress(1.0);
-  if (this->GetAbortExecute())
-  {
-    output->Initialize();
-  }
-  return 1;
+  this->Filter->Update();
 }
 
 //------------------------------------------------------------------------------
@@ -221,24 +230,18 @@ void vtkManifoldHarmonicSmoothing::SetNumberOfHarmonics(int m)
 void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << " (default "
-     << vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS << ")\n";
-  os << indent << "CutoffFraction: " << this->CutoffFraction << " (default "
-     << spectral::DefaultCutoffFraction << ")\n";
+  namespace Enums = vtkManifoldHarmonicsEnums;
+  os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << "\n";
+  os << indent << "CutoffFraction: " << this->CutoffFraction << "\n";
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
-  os << indent << "BoundaryCondition: "
-     << (this->BoundaryCondition == vtkManifoldHarmonicBasis::DIRICHLET ? "Dirichlet" : "Neumann")
-     << " (default Neumann)\n";
-  os << indent << "BasisPrecision: "
-     << (this->BasisPrecision == vtkManifoldHarmonicBasis::FLOAT ? "Float" : "Double")
-     << " (default Double)\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
   os << indent
-     << "Solver: " << (this->Solver == vtkManifoldHarmonicBasis::SLEPC ? "SLEPc" : "Built-in")
-     << " (default Built-in)\n";
-  os << indent << "SlepcPartitions: " << this->SlepcPartitions << " (default 1)\n";
-  os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\" (default none)\n";
-  os << indent << "WeldSeams: " << (this->WeldSeams ? "on" : "off") << " (default on)\n";
-  os << indent << "SeamTolerance: " << this->SeamTolerance << " (default "
-     << vtkManifoldHarmonicsParallel::SeamTolerance << ")\n";
+     << "BoundaryCondition: " << Enums::Name(Enums::BoundaryCondition, this->BoundaryCondition)
+     << "\n";
+  os << indent << "BasisPrecision: " << Enums::Name(Enums::BasisPrecision, this->BasisPrecision)
+     << "\n";
+  os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
+  os << indent << "SlepcPartitions: " << this->SlepcPartitions << "\n";
+  os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
+  os << indent << "WeldSeams: " << (this->WeldSeams ? "on" : "off") << "\n";
+  os << indent << "SeamTolerance: " << this->SeamTolerance << "\n";
 }

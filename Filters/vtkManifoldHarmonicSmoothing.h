@@ -60,11 +60,11 @@
 #ifndef vtkManifoldHarmonicSmoothing_h
 #define vtkManifoldHarmonicSmoothing_h
 
-#include "vtkManifoldHarmonicBasis.h"   // For BasisPrecisionType, DEFAULT_NUMBER_OF_HARMONICS
+#include "vtkManifoldHarmonicBasis.h" // For BasisPrecisionType, DEFAULT_NUMBER_OF_HARMONICS
+#include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPointSetAlgorithm.h"
-#include "vtkSmartPointer.h" // For the internal pipeline
-#include "vtkWeakPointer.h"  // For the internal pipeline
+#include "vtkSmartPointer.h"            // For the internal pipeline
+#include "vtkWeakPointer.h"             // For the internal pipeline
 
 #include <string> // For SlepcOptions
 
@@ -72,7 +72,8 @@ class vtkManifoldHarmonicTransform;
 class vtkPointSet;
 class vtkSpectralFilter;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing : public vtkPointSetAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing
+  : public vtkManifoldHarmonicsAlgorithm
 {
 public:
   ///@{
@@ -80,7 +81,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkManifoldHarmonicSmoothing* New();
-  vtkTypeMacro(vtkManifoldHarmonicSmoothing, vtkPointSetAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicSmoothing, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -122,17 +123,6 @@ public:
   vtkGetMacro(BasisPrecision, int);
   void SetBasisPrecisionToFloat() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::FLOAT); }
   void SetBasisPrecisionToDouble() { this->SetBasisPrecision(vtkManifoldHarmonicBasis::DOUBLE); }
-  ///@}
-
-  ///@{
-  /**
-   * Number of threads of the eigensolve and of the transform and filter stages
-   * (vtkManifoldHarmonicBasis, vtkManifoldHarmonicTransform and
-   * vtkSpectralFilter::SetNumberOfThreads); 0 uses all the machine's cores. Range
-   * [0, VTK_INT_MAX]. Default is 0.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
   ///@}
 
   ///@{
@@ -202,14 +192,13 @@ protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
 
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  /// The stages of a request (see vtkManifoldHarmonicsAlgorithm for errors and aborts).
+  int Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* table) override;
+  const char* GetWorkName() override { return "Manifold harmonic smoothing"; }
 
   int NumberOfHarmonics;
   double CutoffFraction;
   int BasisPrecision;
-  int NumberOfThreads;
   int BoundaryCondition;
   int NumberOfNeighbors;
   int Solver;
@@ -219,6 +208,12 @@ protected:
   double SeamTolerance;
 
 private:
+  /// The internal basis's input becomes a shallow copy of `input` when the input changed.
+  void UpdateBasisInput(vtkPointSet* input);
+  /// The internal basis with this filter's settings, updated. \return false after an abort.
+  bool UpdateBasis();
+  /// The internal transform and spectral filter, updated (collective in a distributed run).
+  void UpdateFilter();
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
   /// The warnings of the internal stages, as this filter's: its observers see them (and the

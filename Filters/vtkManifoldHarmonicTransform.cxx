@@ -78,7 +78,7 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
 
 /// The coefficients of the selected signals summed over the points of this process, which a
 /// ghost array may mark as duplicates of another process's points (those count 0).
-/// \return An error message, empty on success.
+/// \return An error message, empty on success. \throws what the core throws.
 std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   vtkPointSet* input,
   std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>& coefficients,
@@ -92,47 +92,51 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   }
   const std::vector<NamedSignal> signals = SelectSignals(self, input);
   self->SetProgressText("Transform");
-  try
+  const spectral::Vector mass =
+    basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(input));
+  lambda = basis.EigenvalueVector();
+  // A distributed run finishes (its sums are collective); a serial one stops at an abort.
+  for (std::size_t s = 0; s < signals.size() && !self->AbortRequested(); ++s)
   {
-    const spectral::Vector mass =
-      basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(input));
-    lambda = basis.EigenvalueVector();
-    for (std::size_t s = 0; s < signals.size(); ++s)
+    const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
+    coefficients.push_back(
+      { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
+        basis.ForwardTransform(mass, signal.View(), self->GetNumberOfThreads()) });
+    if (!coefficients.back().Values.allFinite())
     {
-      const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
-      coefficients.push_back(
-        { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
-          basis.ForwardTransform(mass, signal.View(), self->GetNumberOfThreads()) });
-      if (!coefficients.back().Values.allFinite())
-      {
-        // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
-        return "The point-data array '" + signals[s].first +
-          "' holds values that are not finite (NaN or infinity) at points of the surface: "
-          "its transform is undefined. Deselect the array, or replace those values first.";
-      }
-      self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
-      if (self->GetAbortExecute() && !vtkManifoldHarmonicsParallel::DistributedController())
-      {
-        break; // RequestData empties the output (a distributed run finishes: sums are collective)
-      }
+      // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
+      return "The point-data array '" + signals[s].first +
+        "' holds values that are not finite (NaN or infinity) at points of the surface: "
+        "its transform is undefined. Deselect the array, or replace those values first.";
     }
-  }
-  catch (const std::exception& e)
-  {
-    return std::string("Manifold harmonic transform failed: ") + e.what();
+    self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
   }
   return std::string();
+}
+
+/// The spectrum table: Index, Eigenvalue, Frequency and the magnitude of each signal's
+/// coefficients.
+void FillSpectrum(vtkTable* spectrum,
+  const spectral::Vector& lambda,
+  const std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>& coefficients)
+{
+  const std::size_t suffix = std::string(Names::CoefficientsSuffix).size();
+  std::vector<vtkManifoldHarmonicsArrays::SpectrumSignal> signals;
+  for (const auto& signal : coefficients)
+  {
+    signals.push_back({ signal.Name.substr(0, signal.Name.size() - suffix), signal.Values });
+  }
+  vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, true, nullptr, signals);
 }
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicTransform::vtkManifoldHarmonicTransform()
-  : PointDataArraySelection(vtkDataArraySelection::New())
+  : vtkManifoldHarmonicsAlgorithm(POINT_SET_AND_TABLE)
+  , PointDataArraySelection(vtkDataArraySelection::New())
   , SelectionObserver(vtkCallbackCommand::New())
 {
   this->TransformPoints = true;
-  this->NumberOfThreads = 0;
-  this->SetNumberOfOutputPorts(2);
   this->SelectionObserver->SetCallback(&SelectionModified);
   this->SelectionObserver->SetClientData(this);
   this->PointDataArraySelection->AddObserver(vtkCommand::ModifiedEvent, this->SelectionObserver);
@@ -195,34 +199,12 @@ const char* vtkManifoldHarmonicTransform::FrequencyColumnName()
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicTransform::RequestDataObject(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkManifoldHarmonicTransform::Execute(vtkPointSet* input,
+  vtkPointSet* output,
+  vtkTable* spectrum)
 {
-  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
-}
-
-//------------------------------------------------------------------------------
-int vtkManifoldHarmonicTransform::FillOutputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
-    return 1;
-  }
-  return this->Superclass::FillOutputPortInformation(port, info);
-}
-
-//------------------------------------------------------------------------------
-int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
-  vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
-  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
+  vtkMultiProcessController* controller = GetDistributedController();
   const bool empty = input->GetNumberOfPoints() == 0;
   if (empty && !controller)
   {
@@ -230,11 +212,13 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
     return 1;
   }
 
-  // Local sums over the points of this process (all of them in a serial run).
+  // Local sums over the points of this process (all of them in a serial run). An error is
+  // reported here and returned after the collective sum below.
   std::vector<vtkManifoldHarmonicsParallel::NamedMatrix> coefficients;
   spectral::Vector lambda;
-  std::string problem =
-    empty ? std::string() : LocalCoefficients(this, input, coefficients, lambda);
+  std::string problem;
+  bool computed =
+    empty || this->Guard([&]() { problem = LocalCoefficients(this, input, coefficients, lambda); });
 
   // Distributed run: every process holds a partial sum; add them up (collective, even on
   // processes without data or with an error, so that no process waits forever).
@@ -245,26 +229,15 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
+  }
+  if (!computed || !problem.empty() || this->AbortRequested())
+  {
     return 0;
   }
-  if (!controller && this->GetAbortExecute())
-  {
-    // An aborted filter's output is empty (as VTK's executive has it), on both ports.
-    output->Initialize();
-    spectrum->Initialize();
-    return 1;
-  }
-
   // The spectrum table once: on process 0 of a distributed run, whose table ParaView shows.
   if (lambda.size() > 0 && (!controller || controller->GetLocalProcessId() == 0))
   {
-    const std::size_t suffix = std::string(Names::CoefficientsSuffix).size();
-    std::vector<vtkManifoldHarmonicsArrays::SpectrumSignal> signals;
-    for (const auto& signal : coefficients)
-    {
-      signals.push_back({ signal.Name.substr(0, signal.Name.size() - suffix), signal.Values });
-    }
-    vtkManifoldHarmonicsArrays::FillSpectrum(spectrum, lambda, true, nullptr, signals);
+    FillSpectrum(spectrum, lambda, coefficients);
   }
   for (const auto& signal :
     empty ? std::vector<vtkManifoldHarmonicsParallel::NamedMatrix>() : coefficients)
@@ -279,9 +252,7 @@ int vtkManifoldHarmonicTransform::RequestData(vtkInformation* vtkNotUsed(request
 void vtkManifoldHarmonicTransform::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off")
-     << " (default On)\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
-  os << indent << "PointDataArraySelection: (empty by default)\n";
+  os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off") << "\n";
+  os << indent << "PointDataArraySelection:\n";
   this->PointDataArraySelection->PrintSelf(os, indent.GetNextIndent());
 }

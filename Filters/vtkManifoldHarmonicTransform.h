@@ -61,14 +61,15 @@
 #ifndef vtkManifoldHarmonicTransform_h
 #define vtkManifoldHarmonicTransform_h
 
+#include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPointSetAlgorithm.h"
 
 class vtkCallbackCommand;
 class vtkDataArraySelection;
 class vtkTable;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicTransform : public vtkPointSetAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicTransform
+  : public vtkManifoldHarmonicsAlgorithm
 {
 public:
   ///@{
@@ -76,7 +77,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkManifoldHarmonicTransform* New();
-  vtkTypeMacro(vtkManifoldHarmonicTransform, vtkPointSetAlgorithm);
+  vtkTypeMacro(vtkManifoldHarmonicTransform, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -88,16 +89,6 @@ public:
   vtkSetMacro(TransformPoints, bool);
   vtkGetMacro(TransformPoints, bool);
   vtkBooleanMacro(TransformPoints, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Number of threads the transform splits the rows of the basis over; 0 uses all the
-   * machine's cores (the core's rule, Filters/Spectral/Common/Threads.h). The coefficients of
-   * different thread counts differ by round-off only. Range [0, VTK_INT_MAX]. Default is 0.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
   ///@}
 
   /**
@@ -131,17 +122,11 @@ protected:
   vtkManifoldHarmonicTransform();
   ~vtkManifoldHarmonicTransform() override;
 
-  int FillOutputPortInformation(int port, vtkInformation* info) override;
-  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
-  int RequestDataObject(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  /// The stages of a request (see vtkManifoldHarmonicsAlgorithm for errors and aborts).
+  int Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* spectrum) override;
+  const char* GetWorkName() override { return "Manifold harmonic transform"; }
 
   bool TransformPoints;
-  int NumberOfThreads;
   vtkDataArraySelection* PointDataArraySelection;
   vtkCallbackCommand* SelectionObserver;
 

@@ -330,7 +330,8 @@ static vtkIdType NonManifoldEdges(const spectral::Triangles& faces)
   edges.reserve(distinct.size() * 3);
   for (const auto& face : distinct)
   {
-    for (const auto& edge : { std::make_pair(face[0], face[1]), std::make_pair(face[0], face[2]),
+    for (const auto& edge : { std::make_pair(face[0], face[1]),
+           std::make_pair(face[0], face[2]),
            std::make_pair(face[1], face[2]) })
     {
       edges.push_back((static_cast<std::uint64_t>(static_cast<std::uint32_t>(edge.first)) << 32) |
@@ -647,6 +648,32 @@ CoreMesh ToCoreMesh(vtkPointSet* input)
 }
 
 //------------------------------------------------------------------------------
+bool HasCellsOrIsPointCloud(vtkPointSet* input)
+{
+  if (input->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  if (vtkPolyData* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    return polyData->GetNumberOfPolys() + polyData->GetNumberOfStrips() > 0 ||
+      polyData->GetNumberOfLines() == 0;
+  }
+  bool others = false; // lines, or cells of a kind ToCoreMesh does not take
+  for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+  {
+    const unsigned char type = static_cast<unsigned char>(input->GetCellType(c));
+    const int dimension = vtkCellTypes::GetDimension(type);
+    if (dimension >= 2 && vtkCellTypes::IsLinear(type))
+    {
+      return true;
+    }
+    others = others || dimension != 0;
+  }
+  return !others;
+}
+
+//------------------------------------------------------------------------------
 int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
@@ -671,6 +698,24 @@ std::vector<double> EdgeSums(vtkPointSet* input)
 {
   return input->GetNumberOfPoints() > 0 ? EdgeSums(ToCoreMesh(input))
                                         : std::vector<double>{ 0.0, 0.0 };
+}
+
+//------------------------------------------------------------------------------
+const MeshFigures& MeshFiguresCache::Of(vtkPointSet* input)
+{
+  if (input != this->Input.GetPointer() || input->GetMTime() != this->Time)
+  {
+    this->Figures = MeshFigures();
+    if (input->GetNumberOfPoints() > 0)
+    {
+      const CoreMesh cells = ToCoreMesh(input);
+      this->Figures.EdgeSums = EdgeSums(cells);
+      this->Figures.IsVolume = cells.Mesh.IsVolume();
+    }
+    this->Input = input;
+    this->Time = input->GetMTime();
+  }
+  return this->Figures;
 }
 
 //------------------------------------------------------------------------------

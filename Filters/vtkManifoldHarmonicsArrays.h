@@ -17,6 +17,7 @@
 #include "Spectral/Filtering/Transfer.h"
 
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include <string>
 #include <vector>
@@ -183,6 +184,10 @@ struct CoreMesh
 /// Convert the cells of a point set (see CoreMesh).
 CoreMesh ToCoreMesh(vtkPointSet* input);
 
+/// Whether ToCoreMesh(input) would give cells or a point cloud (HasCells() || IsPointCloud()),
+/// from the cell types alone, without converting the mesh.
+bool HasCellsOrIsPointCloud(vtkPointSet* input);
+
 /**
  * RequestDataObject of the filters whose first output has the type of their input (any
  * vtkPointSet): makes output port 0 an instance of the input's class; other ports keep the
@@ -199,6 +204,31 @@ int OutputLikeInput(vtkInformationVector** inputVector, vtkInformationVector* ou
 std::vector<double> EdgeSums(vtkPointSet* input);
 /// EdgeSums of an input already converted by ToCoreMesh.
 std::vector<double> EdgeSums(const CoreMesh& cells);
+
+/// What the filters downstream of the basis need of the mesh itself, on this process (the rest
+/// they read from the basis arrays): its EdgeSums and whether its cells are a volume.
+struct MeshFigures
+{
+  std::vector<double> EdgeSums = { 0.0, 0.0 };
+  bool IsVolume = false;
+};
+
+/**
+ * The one adapter between an input and its MeshFigures: the cells are converted (ToCoreMesh)
+ * once per input object and modification time. A filter keeps one and asks it on every
+ * execution, so that changing the filter's settings alone does not walk the mesh again; another
+ * input object is converted even with the same MTime.
+ */
+class MeshFiguresCache
+{
+public:
+  const MeshFigures& Of(vtkPointSet* input);
+
+private:
+  vtkWeakPointer<vtkPointSet> Input;
+  vtkMTimeType Time = 0;
+  MeshFigures Figures;
+};
 } // namespace vtkManifoldHarmonicsArrays
 
 #endif

@@ -174,23 +174,6 @@ void WarnAboutConstantHarmonics(vtkSpectralFilter* self,
 namespace vtkManifoldHarmonicsCutoffs
 {
 //------------------------------------------------------------------------------
-spectral::FrequencyUnits ToFrequencyUnits(int units)
-{
-  switch (units)
-  {
-    case vtkSpectralFilter::ABSOLUTE_FREQUENCY:
-      return spectral::FrequencyUnits::Absolute;
-    case vtkSpectralFilter::FRACTION_OF_HIGHEST:
-      return spectral::FrequencyUnits::FractionOfHighest;
-    case vtkSpectralFilter::HARMONIC_INDEX:
-      return spectral::FrequencyUnits::HarmonicIndex;
-    default:
-      throw spectral::InvalidInput(
-        "CutoffUnits " + std::to_string(units) + " is none of the units");
-  }
-}
-
-//------------------------------------------------------------------------------
 void InitialRanges(double frequency[2], double time[2])
 {
   std::copy(InitialFrequencyRange, InitialFrequencyRange + 2, frequency);
@@ -276,8 +259,9 @@ void WarnAboutCutoffs(vtkSpectralFilter* self,
   {
     return;
   }
-  const SpectrumEnds ends = { std::sqrt(FirstNonZeroEigenvalue(lambda, nyquist)),
-    spectral::HighestFrequency(lambda), m - 1 };
+  const SpectrumEnds ends = {
+    std::sqrt(FirstNonZeroEigenvalue(lambda, nyquist)), spectral::HighestFrequency(lambda), m - 1
+  };
   const std::string consequence =
     Consequence(gains, constant, highFrequencyGain, self->GetReinjectHighFrequencies());
   WarnIfOutside(self, "Cutoff", given.Cutoff, absolute.Cutoff, ends, consequence);

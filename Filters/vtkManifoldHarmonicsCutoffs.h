@@ -20,12 +20,6 @@ class vtkSpectralFilter;
 
 namespace vtkManifoldHarmonicsCutoffs
 {
-/// The core's FrequencyUnits of a vtkSpectralFilter::CutoffUnitsType value: the checked
-/// conversion between the two declarations (the XML's EnumerationDomain is checked against the
-/// C++ enum by Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in).
-/// \throws spectral::InvalidInput for a value that is none of the units.
-spectral::FrequencyUnits ToFrequencyUnits(int units);
-
 /// The slider ranges of a filter that has not run: [0, 1] and [0, 1], around the defaults.
 void InitialRanges(double frequency[2], double time[2]);
 

@@ -47,6 +47,15 @@ constexpr const char* IndexColumn = "Index";
 constexpr const char* EigenvalueColumn = "Eigenvalue";
 constexpr const char* FrequencyColumn = "Frequency";
 constexpr const char* GainColumn = "Gain";
+/// vtkSpectralDescriptors: the point descriptors, their parameters (field data) and the
+/// ShapeDNA column of scaled eigenvalues.
+constexpr const char* HeatKernelSignature = "HeatKernelSignature";
+constexpr const char* WaveKernelSignature = "WaveKernelSignature";
+constexpr const char* GlobalPointSignature = "GlobalPointSignature";
+constexpr const char* SpectralDistance = "SpectralDistance";
+constexpr const char* HeatKernelTimes = "HeatKernelSignatureTimes";
+constexpr const char* WaveKernelEnergies = "WaveKernelSignatureEnergies";
+constexpr const char* ScaledEigenvalueColumn = "ScaledEigenvalue";
 
 /// `name` + `suffix` (an empty name for a null one).
 inline std::string Concatenate(const char* name, const char* suffix)

@@ -9,6 +9,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
@@ -29,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -46,27 +48,23 @@ struct Descriptor
   std::vector<std::string> Components;
 };
 
-/// The sums over the surface (volume) of this process: the area (volume) (the mass of the points it
-/// owns, see vtkManifoldHarmonicsGhosts), the vtkManifoldHarmonicsArrays::EdgeSums, and 1 if its
-/// cells are a volume, in that order; in a distributed run added over all processes
+/// The sums over the surface (volume) of this process: the area (volume) (the mass of the points
+/// it owns, see vtkManifoldHarmonicsGhosts), the edge sums of its cells and 1 if they are a
+/// volume (`figures`), in that order; in a distributed run added over all processes
 /// (collective), so that they are the whole mesh's. An input without the mass array adds no area
 /// (FindBasis reports it).
-std::vector<double> SurfaceSums(vtkMultiProcessController* controller, vtkPointSet* input)
+std::vector<double> SurfaceSums(vtkMultiProcessController* controller,
+  vtkPointSet* input,
+  const vtkManifoldHarmonicsArrays::MeshFigures& figures)
 {
-  std::vector<double> sums = { 0.0, 0.0, 0.0, 0.0 };
+  std::vector<double> sums = {
+    0.0, figures.EdgeSums[0], figures.EdgeSums[1], figures.IsVolume ? 1.0 : 0.0
+  };
   vtkDataArray* mass = input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass);
   if (mass && mass->GetNumberOfTuples() == input->GetNumberOfPoints())
   {
     sums[0] = vtkManifoldHarmonicsArrays::Signal(mass).View().col(0).dot(
       vtkManifoldHarmonicsGhosts::OwnedPoints(input));
-  }
-  if (input->GetNumberOfPoints() > 0)
-  {
-    const vtkManifoldHarmonicsArrays::CoreMesh cells =
-      vtkManifoldHarmonicsArrays::ToCoreMesh(input);
-    const std::vector<double> edges = vtkManifoldHarmonicsArrays::EdgeSums(cells);
-    std::copy(edges.begin(), edges.end(), sums.begin() + 1);
-    sums[3] = cells.Mesh.IsVolume() ? 1.0 : 0.0;
   }
   if (controller)
   {
@@ -142,15 +140,17 @@ vtkSmartPointer<vtkDoubleArray> ToArray(Descriptor& descriptor, const spectral::
   return array;
 }
 
-/// Warns when the harmonics miss more than 1% of the heat trace at time t (Weyl estimate).
+/// Warns when the harmonics miss more than 1% of the heat trace at time t (Weyl estimate for the
+/// area or volume `measure` of dimension 2 or 3).
 void WarnTruncation(vtkSpectralDescriptors* self,
   const spectral::Spectrum& spectrum,
-  double area,
+  double measure,
+  int dimension,
   double time,
   vtkIdType points,
   const char* what)
 {
-  const int needed = spectral::HeatKernelHarmonicsNeeded(spectrum, area, time);
+  const int needed = spectral::HeatKernelHarmonicsNeeded(spectrum, measure, dimension, time);
   if (needed > spectrum.Lambda.size())
   {
     std::ostringstream count;
@@ -232,13 +232,189 @@ void FillShapeDNA(const spectral::Vector& lambda, double measure, int dimension,
   table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
     lambda, vtkManifoldHarmonicsNames::EigenvalueColumn));
   table->AddColumn(vtkManifoldHarmonicsArrays::NewDoubleArray(
-    scaled, vtkSpectralDescriptors::ScaledEigenvalueColumnName()));
+    scaled, vtkManifoldHarmonicsNames::ScaledEigenvalueColumn));
+}
+/// What the descriptors need of the shape: its spectrum, its area or volume (measure), its
+/// dimension (2 or 3) and its number of points.
+struct Shape
+{
+  spectral::Spectrum Spectrum;
+  double Measure;
+  int Dimension;
+  vtkIdType Points;
+};
+
+/// The descriptors computed, and their parameters (field data: times, energies).
+struct Results
+{
+  std::vector<Descriptor> Descriptors;
+  vtkNew<vtkFieldData> Parameters;
+};
+
+/// The heat kernel signature at the given times, or at the default ones.
+void AddHeatKernelSignature(vtkSpectralDescriptors* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const Shape& shape,
+  Results& results)
+{
+  spectral::Vector times = spectral::DefaultHeatKernelTimes(shape.Spectrum);
+  if (self->GetNumberOfHeatKernelTimes() > 0)
+  {
+    times.resize(self->GetNumberOfHeatKernelTimes());
+    for (int j = 0; j < self->GetNumberOfHeatKernelTimes(); ++j)
+    {
+      times[j] = self->GetHeatKernelTime(j);
+    }
+  }
+  for (Eigen::Index j = 0; j < times.size(); ++j)
+  {
+    WarnTruncation(self,
+      shape.Spectrum,
+      shape.Measure,
+      shape.Dimension,
+      times[j],
+      shape.Points,
+      "The heat kernel signature");
+  }
+  const bool scaleNormalize = self->GetScaleNormalizeHeatKernel();
+  results.Descriptors.push_back({ vtkManifoldHarmonicsNames::HeatKernelSignature,
+    OnBasis(basis,
+      [&shape, &times, scaleNormalize](const auto& H)
+      { return spectral::HeatKernelSignature(H, shape.Spectrum, times, scaleNormalize); }),
+    Labels("t=", times) });
+  results.Parameters->AddArray(
+    vtkManifoldHarmonicsArrays::NewDoubleArray(times, vtkManifoldHarmonicsNames::HeatKernelTimes));
+}
+
+/// The wave kernel signature at the default energies.
+void AddWaveKernelSignature(vtkSpectralDescriptors* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const Shape& shape,
+  Results& results)
+{
+  const spectral::WaveKernelEnergies energies = spectral::DefaultWaveKernelEnergies(
+    shape.Spectrum, self->GetNumberOfEnergies(), self->GetWaveKernelSigma());
+  results.Descriptors.push_back({ vtkManifoldHarmonicsNames::WaveKernelSignature,
+    OnBasis(basis,
+      [&shape, &energies](const auto& H)
+      { return spectral::WaveKernelSignature(H, shape.Spectrum, energies); }),
+    Labels("e=", energies.Energies) });
+  results.Parameters->AddArray(vtkManifoldHarmonicsArrays::NewDoubleArray(
+    energies.Energies, vtkManifoldHarmonicsNames::WaveKernelEnergies));
+}
+
+/// The global point signature, its components clamped to the non-constant harmonics.
+void AddGlobalPointSignature(vtkSpectralDescriptors* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const Shape& shape,
+  Results& results)
+{
+  const int available = static_cast<int>(spectral::NonZeroIndices(shape.Spectrum).size());
+  int components = self->GetNumberOfGPSComponents();
+  if (components > available)
+  {
+    vtkWarningWithObjectMacro(self,
+      << "NumberOfGPSComponents " << components << " clamped to " << available
+      << ", the non-constant harmonics of the basis.");
+    components = available;
+  }
+  results.Descriptors.push_back({ vtkManifoldHarmonicsNames::GlobalPointSignature,
+    OnBasis(basis,
+      [&shape, components](const auto& H)
+      { return spectral::GlobalPointSignature(H, shape.Spectrum, components); }),
+    {} });
+}
+
+/// The spectral distance of the chosen kind from `source`.
+void AddSpectralDistance(vtkSpectralDescriptors* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const Shape& shape,
+  vtkIdType source,
+  Results& results)
+{
+  const spectral::DistanceKind kind = vtkManifoldHarmonicsEnums::To(
+    vtkManifoldHarmonicsEnums::DistanceKind, self->GetDistanceKind(), "DistanceKind");
+  double time = self->GetDiffusionTime();
+  if (kind == spectral::DistanceKind::Diffusion)
+  {
+    time = time > 0.0 ? time : spectral::DefaultHeatKernelTimes(shape.Spectrum, 1)[0];
+    WarnTruncation(self,
+      shape.Spectrum,
+      shape.Measure,
+      shape.Dimension,
+      2.0 * time,
+      shape.Points,
+      "The diffusion distance (a heat kernel at twice its time)");
+  }
+  const spectral::Vector weights = spectral::DistanceWeights(shape.Spectrum, kind, time);
+  results.Descriptors.push_back({ vtkManifoldHarmonicsNames::SpectralDistance,
+    OnBasis(basis,
+      [&weights, source](const auto& H)
+      { return spectral::RowMatrix(spectral::SpectralDistance(H, weights, source)); }),
+    {} });
+}
+
+/// The descriptors the filter asks for, a quarter of the progress each.
+/// \return false after an abort.
+bool ComputeDescriptors(vtkSpectralDescriptors* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const Shape& shape,
+  vtkIdType source,
+  Results& results)
+{
+  const std::pair<bool, std::function<void()>> steps[] = {
+    { self->GetComputeHeatKernelSignature(),
+      [&]() { AddHeatKernelSignature(self, basis, shape, results); } },
+    { self->GetComputeWaveKernelSignature(),
+      [&]() { AddWaveKernelSignature(self, basis, shape, results); } },
+    { self->GetComputeGlobalPointSignature(),
+      [&]() { AddGlobalPointSignature(self, basis, shape, results); } },
+    { self->GetComputeSpectralDistance(),
+      [&]() { AddSpectralDistance(self, basis, shape, source, results); } },
+  };
+  for (std::size_t k = 0; k < 4; ++k)
+  {
+    if (steps[k].first)
+    {
+      steps[k].second();
+    }
+    self->UpdateProgress(0.25 * static_cast<double>(k + 1));
+    if (self->AbortRequested())
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The output: the input with the descriptors (point data, the first one active) and their
+/// parameters (field data).
+void WriteDescriptors(vtkPointSet* input,
+  vtkPointSet* output,
+  Results& results,
+  const spectral::Vector& mass)
+{
+  output->ShallowCopy(input);
+  for (Descriptor& descriptor : results.Descriptors)
+  {
+    output->GetPointData()->AddArray(ToArray(descriptor, mass));
+  }
+  for (int a = 0; a < results.Parameters->GetNumberOfArrays(); ++a)
+  {
+    output->GetFieldData()->AddArray(results.Parameters->GetAbstractArray(a));
+  }
+  if (!results.Descriptors.empty())
+  {
+    output->GetPointData()->SetActiveScalars(results.Descriptors.front().Name);
+  }
 }
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkSpectralDescriptors::vtkSpectralDescriptors()
-  : HeatKernelTimes(vtkDoubleArray::New())
+  : vtkManifoldHarmonicsAlgorithm(POINT_SET_AND_TABLE)
+  , HeatKernelTimes(vtkDoubleArray::New())
+  , MeshFigures(new vtkManifoldHarmonicsArrays::MeshFiguresCache)
 {
   this->ComputeHeatKernelSignature = true;
   this->ScaleNormalizeHeatKernel = false;
@@ -253,7 +429,6 @@ vtkSpectralDescriptors::vtkSpectralDescriptors()
   this->SourcePoint = 0;
   this->UseSourceLocation = false;
   this->SourceLocation[0] = this->SourceLocation[1] = this->SourceLocation[2] = 0.0;
-  this->SetNumberOfOutputPorts(2);
 }
 
 //------------------------------------------------------------------------------
@@ -366,78 +541,53 @@ vtkTable* vtkSpectralDescriptors::GetShapeDNAOutput()
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::HeatKernelSignatureArrayName()
 {
-  return "HeatKernelSignature";
+  return vtkManifoldHarmonicsNames::HeatKernelSignature;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::WaveKernelSignatureArrayName()
 {
-  return "WaveKernelSignature";
+  return vtkManifoldHarmonicsNames::WaveKernelSignature;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::GlobalPointSignatureArrayName()
 {
-  return "GlobalPointSignature";
+  return vtkManifoldHarmonicsNames::GlobalPointSignature;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::SpectralDistanceArrayName()
 {
-  return "SpectralDistance";
+  return vtkManifoldHarmonicsNames::SpectralDistance;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::HeatKernelTimesArrayName()
 {
-  return "HeatKernelSignatureTimes";
+  return vtkManifoldHarmonicsNames::HeatKernelTimes;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::WaveKernelEnergiesArrayName()
 {
-  return "WaveKernelSignatureEnergies";
+  return vtkManifoldHarmonicsNames::WaveKernelEnergies;
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSpectralDescriptors::ScaledEigenvalueColumnName()
 {
-  return "ScaledEigenvalue";
+  return vtkManifoldHarmonicsNames::ScaledEigenvalueColumn;
 }
 
 //------------------------------------------------------------------------------
-int vtkSpectralDescriptors::RequestDataObject(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkSpectralDescriptors::Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* shapeDNA)
 {
-  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
-}
-
-//------------------------------------------------------------------------------
-int vtkSpectralDescriptors::FillOutputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
-    return 1;
-  }
-  return this->Superclass::FillOutputPortInformation(port, info);
-}
-
-//------------------------------------------------------------------------------
-int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
-  vtkTable* shapeDNA = vtkTable::GetData(outputVector, 1);
   this->UsedSourcePoint = -1;
   // Collective in a distributed run, so before any return: the area and edge sums of the whole
   // surface. ParaView appends the tables of all processes: process 0 alone fills ShapeDNA.
-  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
-  const std::vector<double> sums = SurfaceSums(controller, input);
-  const double area = sums[0];
+  vtkMultiProcessController* controller = GetDistributedController();
+  const std::vector<double> sums = SurfaceSums(controller, input, this->MeshFigures->Of(input));
   vtkNew<vtkTable> unshown;
   vtkTable* table = !controller || controller->GetLocalProcessId() == 0 ? shapeDNA : unshown;
   if (input->GetNumberOfPoints() == 0)
@@ -451,7 +601,7 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   }
   if (SpectrumOnly(input))
   {
-    return this->ShapeDNAOnly(input, area, Dimension(sums), output, table);
+    return this->ShapeDNAOnly(input, sums[0], Dimension(sums), output, table);
   }
   vtkManifoldHarmonicsArrays::Basis basis;
   std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
@@ -467,129 +617,21 @@ int vtkSpectralDescriptors::RequestData(vtkInformation* vtkNotUsed(request),
   {
     return 0;
   }
-  vtkDebugMacro(<< "HKS " << this->ComputeHeatKernelSignature << " ("
-                << this->GetNumberOfHeatKernelTimes() << " times), WKS "
+  vtkDebugMacro(<< "HKS " << this->ComputeHeatKernelSignature << ", WKS "
                 << this->ComputeWaveKernelSignature << ", GPS " << this->ComputeGlobalPointSignature
-                << ", distance " << this->ComputeSpectralDistance << " kind " << this->DistanceKind
-                << " from " << source);
+                << ", distance " << this->ComputeSpectralDistance << " from " << source);
   this->SetProgressText("Spectral descriptors");
-  std::vector<Descriptor> descriptors;
-  vtkNew<vtkFieldData> parameters;
-  try
+  const Shape shape{
+    ToSpectrum(basis.EigenvalueVector(), sums), sums[0], Dimension(sums), input->GetNumberOfPoints()
+  };
+  Results results;
+  if (!ComputeDescriptors(this, basis, shape, source, results))
   {
-    const spectral::Spectrum spectrum = ToSpectrum(basis.EigenvalueVector(), sums);
-    if (this->ComputeHeatKernelSignature)
-    {
-      const spectral::Vector times = this->GetNumberOfHeatKernelTimes() > 0
-        ? spectral::Vector(vtkManifoldHarmonicsArrays::Signal(this->HeatKernelTimes).View().col(0))
-        : spectral::DefaultHeatKernelTimes(spectrum);
-      for (Eigen::Index j = 0; j < times.size(); ++j)
-      {
-        WarnTruncation(
-          this, spectrum, area, times[j], input->GetNumberOfPoints(), "The heat kernel signature");
-      }
-      descriptors.push_back({ HeatKernelSignatureArrayName(),
-        OnBasis(basis,
-          [&spectrum, &times, this](const auto& H) {
-            return spectral::HeatKernelSignature(
-              H, spectrum, times, this->ScaleNormalizeHeatKernel);
-          }),
-        Labels("t=", times) });
-      parameters->AddArray(
-        vtkManifoldHarmonicsArrays::NewDoubleArray(times, HeatKernelTimesArrayName()));
-    }
-    this->UpdateProgress(0.25);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-    if (this->ComputeWaveKernelSignature)
-    {
-      const spectral::WaveKernelEnergies energies = spectral::DefaultWaveKernelEnergies(
-        spectrum, this->NumberOfEnergies, this->WaveKernelSigma);
-      descriptors.push_back({ WaveKernelSignatureArrayName(),
-        OnBasis(basis,
-          [&spectrum, &energies](const auto& H)
-          { return spectral::WaveKernelSignature(H, spectrum, energies); }),
-        Labels("e=", energies.Energies) });
-      parameters->AddArray(vtkManifoldHarmonicsArrays::NewDoubleArray(
-        energies.Energies, WaveKernelEnergiesArrayName()));
-    }
-    this->UpdateProgress(0.5);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-    if (this->ComputeGlobalPointSignature)
-    {
-      const int available = static_cast<int>(spectral::NonZeroIndices(spectrum).size());
-      int components = this->NumberOfGPSComponents;
-      if (components > available)
-      {
-        vtkWarningMacro(<< "NumberOfGPSComponents " << components << " clamped to " << available
-                        << ", the non-constant harmonics of the basis.");
-        components = available;
-      }
-      descriptors.push_back({ GlobalPointSignatureArrayName(),
-        OnBasis(basis,
-          [&spectrum, components](const auto& H)
-          { return spectral::GlobalPointSignature(H, spectrum, components); }),
-        {} });
-    }
-    this->UpdateProgress(0.75);
-    if (this->GetAbortExecute())
-    {
-      return 1;
-    }
-    if (this->ComputeSpectralDistance)
-    {
-      const auto kind = static_cast<spectral::DistanceKind>(this->DistanceKind);
-      double time = this->DiffusionTime;
-      if (kind == spectral::DistanceKind::Diffusion)
-      {
-        time = time > 0.0 ? time : spectral::DefaultHeatKernelTimes(spectrum, 1)[0];
-        WarnTruncation(this,
-          spectrum,
-          area,
-          2.0 * time,
-          input->GetNumberOfPoints(),
-          "The diffusion distance (a heat kernel at twice its time)");
-      }
-      const spectral::Vector weights = spectral::DistanceWeights(spectrum, kind, time);
-      descriptors.push_back({ SpectralDistanceArrayName(),
-        OnBasis(basis,
-          [&weights, source](const auto& H)
-          { return spectral::RowMatrix(spectral::SpectralDistance(H, weights, source)); }),
-        {} });
-      this->UsedSourcePoint = source;
-    }
-    FillShapeDNA(spectrum.Lambda, area, Dimension(sums), table);
+    return 1; // aborted
   }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Spectral descriptors failed: " << e.what());
-    shapeDNA->Initialize();
-    return 0;
-  }
-  this->UpdateProgress(1.0);
-  if (this->GetAbortExecute())
-  {
-    shapeDNA->Initialize();
-    return 1;
-  }
-  output->ShallowCopy(input);
-  for (Descriptor& descriptor : descriptors)
-  {
-    output->GetPointData()->AddArray(ToArray(descriptor, mass));
-  }
-  for (int a = 0; a < parameters->GetNumberOfArrays(); ++a)
-  {
-    output->GetFieldData()->AddArray(parameters->GetAbstractArray(a));
-  }
-  if (!descriptors.empty())
-  {
-    output->GetPointData()->SetActiveScalars(descriptors.front().Name);
-  }
+  this->UsedSourcePoint = source;
+  FillShapeDNA(shape.Spectrum.Lambda, shape.Measure, shape.Dimension, table);
+  WriteDescriptors(input, output, results, mass);
   return 1;
 }
 
@@ -598,30 +640,28 @@ void vtkSpectralDescriptors::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const auto onOff = [](bool value) { return value ? "On" : "Off"; };
-  os << indent << "ComputeHeatKernelSignature: " << onOff(this->ComputeHeatKernelSignature)
-     << " (default On)\n";
+  os << indent << "ComputeHeatKernelSignature: " << onOff(this->ComputeHeatKernelSignature) << "\n";
   os << indent << "HeatKernelTimes:";
   for (vtkIdType j = 0; j < this->HeatKernelTimes->GetNumberOfTuples(); ++j)
   {
     os << " " << this->HeatKernelTimes->GetValue(j);
   }
-  os << " (default empty: 16 times over [4 ln 10 / lambda_max, 4 ln 10 / lambda_1])\n";
-  os << indent << "ScaleNormalizeHeatKernel: " << onOff(this->ScaleNormalizeHeatKernel)
-     << " (default Off)\n";
-  os << indent << "ComputeWaveKernelSignature: " << onOff(this->ComputeWaveKernelSignature)
-     << " (default Off)\n";
-  os << indent << "NumberOfEnergies: " << this->NumberOfEnergies << " (default 100)\n";
-  os << indent << "WaveKernelSigma: " << this->WaveKernelSigma << " (default 0: 7 energy steps)\n";
+  os << (this->HeatKernelTimes->GetNumberOfTuples() == 0 ? " (the default times)\n" : "\n");
+  os << indent << "ScaleNormalizeHeatKernel: " << onOff(this->ScaleNormalizeHeatKernel) << "\n";
+  os << indent << "ComputeWaveKernelSignature: " << onOff(this->ComputeWaveKernelSignature) << "\n";
+  os << indent << "NumberOfEnergies: " << this->NumberOfEnergies << "\n";
+  os << indent << "WaveKernelSigma: " << this->WaveKernelSigma << "\n";
   os << indent << "ComputeGlobalPointSignature: " << onOff(this->ComputeGlobalPointSignature)
-     << " (default Off)\n";
-  os << indent << "NumberOfGPSComponents: " << this->NumberOfGPSComponents << " (default 10)\n";
-  os << indent << "ComputeSpectralDistance: " << onOff(this->ComputeSpectralDistance)
-     << " (default Off)\n";
-  os << indent << "DistanceKind: " << this->DistanceKind << " (default 2, BIHARMONIC)\n";
-  os << indent << "DiffusionTime: " << this->DiffusionTime
-     << " (default 0: 4 ln 10 / sqrt(lambda_1 lambda_max))\n";
-  os << indent << "SourcePoint: " << this->SourcePoint << " (default 0)\n";
-  os << indent << "UseSourceLocation: " << onOff(this->UseSourceLocation) << " (default Off)\n";
+     << "\n";
+  os << indent << "NumberOfGPSComponents: " << this->NumberOfGPSComponents << "\n";
+  os << indent << "ComputeSpectralDistance: " << onOff(this->ComputeSpectralDistance) << "\n";
+  os << indent << "DistanceKind: "
+     << vtkManifoldHarmonicsEnums::Name(vtkManifoldHarmonicsEnums::DistanceKind, this->DistanceKind)
+     << "\n";
+  os << indent << "DiffusionTime: " << this->DiffusionTime << "\n";
+  os << indent << "SourcePoint: " << this->SourcePoint << "\n";
+  os << indent << "UseSourceLocation: " << onOff(this->UseSourceLocation) << "\n";
   os << indent << "SourceLocation: (" << this->SourceLocation[0] << ", " << this->SourceLocation[1]
-     << ", " << this->SourceLocation[2] << ") (default (0, 0, 0))\n";
+     << ", " << this->SourceLocation[2] << ")\n";
+  os << indent << "UsedSourcePoint: " << this->UsedSourcePoint << "\n";
 }

@@ -74,13 +74,20 @@
 #ifndef vtkSpectralDescriptors_h
 #define vtkSpectralDescriptors_h
 
+#include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPointSetAlgorithm.h"
+
+#include <memory> // For the mesh figures
 
 class vtkDoubleArray;
 class vtkTable;
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralDescriptors : public vtkPointSetAlgorithm
+namespace vtkManifoldHarmonicsArrays
+{
+class MeshFiguresCache;
+}
+
+class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralDescriptors : public vtkManifoldHarmonicsAlgorithm
 {
 public:
   ///@{
@@ -88,7 +95,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkSpectralDescriptors* New();
-  vtkTypeMacro(vtkSpectralDescriptors, vtkPointSetAlgorithm);
+  vtkTypeMacro(vtkSpectralDescriptors, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -266,14 +273,9 @@ protected:
   vtkSpectralDescriptors();
   ~vtkSpectralDescriptors() override;
 
-  int FillOutputPortInformation(int port, vtkInformation* info) override;
-  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
-  int RequestDataObject(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  /// The stages of a request (see vtkManifoldHarmonicsAlgorithm for errors and aborts).
+  int Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* shapeDNA) override;
+  const char* GetWorkName() override { return "Spectral descriptors"; }
 
   bool ComputeHeatKernelSignature;
   vtkDoubleArray* HeatKernelTimes;
@@ -290,6 +292,8 @@ protected:
   bool UseSourceLocation;
   double SourceLocation[3];
   vtkIdType UsedSourcePoint = -1;
+  /// The edge sums and kind of the input's cells, computed once per input object and MTime.
+  std::unique_ptr<vtkManifoldHarmonicsArrays::MeshFiguresCache> MeshFigures;
 
   /// ShapeDNA alone, from a basis computed with EigenvaluesOnly (no harmonics), for a surface
   /// of the given area (dimension 2) or a volume of the given volume (dimension 3).

@@ -7,6 +7,7 @@
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsCutoffs.h"
+#include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkMultiProcessController.h"
@@ -88,40 +89,12 @@ std::string FindJobs(vtkSpectralFilter* self,
   return std::string();
 }
 
-/// The core's FilterKind of a vtkSpectralFilter::FilterKinds value: the checked conversion
-/// between the two declarations (the XML's EnumerationDomain is checked against the C++ enum by
-/// Testing/ParaView/TestManifoldHarmonicsXMLDefaults.py.in).
-/// \throws spectral::InvalidInput for a value that is none of the kinds.
-spectral::FilterKind ToFilterKind(int kind)
-{
-  switch (kind)
-  {
-    case vtkSpectralFilter::LOW_PASS:
-      return spectral::FilterKind::LowPass;
-    case vtkSpectralFilter::HIGH_PASS:
-      return spectral::FilterKind::HighPass;
-    case vtkSpectralFilter::BAND_PASS:
-      return spectral::FilterKind::BandPass;
-    case vtkSpectralFilter::BAND_STOP:
-      return spectral::FilterKind::BandStop;
-    case vtkSpectralFilter::ENHANCEMENT:
-      return spectral::FilterKind::Enhancement;
-    case vtkSpectralFilter::BAND_EXAGGERATION:
-      return spectral::FilterKind::BandExaggeration;
-    case vtkSpectralFilter::HEAT_DIFFUSION:
-      return spectral::FilterKind::HeatDiffusion;
-    case vtkSpectralFilter::CUSTOM:
-      return spectral::FilterKind::Custom;
-    default:
-      throw spectral::InvalidInput("FilterKind " + std::to_string(kind) + " is none of the kinds");
-  }
-}
-
 /// The parameters of the core transfer function, in the filter's CutoffUnits.
 spectral::FilterParameters Parameters(vtkSpectralFilter* self)
 {
   spectral::FilterParameters parameters;
-  parameters.Kind = ToFilterKind(self->GetFilterKind());
+  parameters.Kind = vtkManifoldHarmonicsEnums::To(
+    vtkManifoldHarmonicsEnums::FilterKind, self->GetFilterKind(), "FilterKind");
   parameters.Cutoff = self->GetCutoff();
   parameters.UpperCutoff = self->GetUpperCutoff();
   parameters.Transition = self->GetTransition();
@@ -224,46 +197,96 @@ void WriteSignal(const FilterJob& job,
       filteredCoefficients, job.Coefficients->GetName()));
   }
 }
+/// The filter designed for a basis: its eigenvalues, the parameters as given and in
+/// frequencies, and the gain of each harmonic.
+struct Design
+{
+  spectral::Vector Lambda;
+  double FirstNonZero = 0.0;
+  spectral::FilterParameters Given;
+  spectral::FilterParameters Parameters;
+  spectral::Vector Gains;
+};
+
+/// The filter's parameters for the eigenvalues `lambda` in frequencies (validated in the
+/// filter's units first) and their gains; the slider ranges of these eigenvalues.
+Design DesignFilter(vtkSpectralFilter* self,
+  const spectral::Vector& lambda,
+  double nyquist,
+  double frequencyRange[2],
+  double timeRange[2])
+{
+  Design design;
+  design.Lambda = lambda;
+  design.FirstNonZero = vtkManifoldHarmonicsCutoffs::FirstNonZeroEigenvalue(lambda, nyquist);
+  vtkManifoldHarmonicsCutoffs::SliderRanges(
+    lambda, design.FirstNonZero, self->GetCutoffUnits(), frequencyRange, timeRange);
+  design.Given = Parameters(self);
+  design.Parameters = spectral::ToAbsoluteUnits(design.Given,
+    vtkManifoldHarmonicsEnums::To(
+      vtkManifoldHarmonicsEnums::CutoffUnits, self->GetCutoffUnits(), "CutoffUnits"),
+    lambda,
+    design.FirstNonZero);
+  design.Gains = spectral::Gains(design.Parameters, lambda);
+  return design;
+}
+
+/// The gain of the re-injected high frequencies (0 without re-injection), after the warnings
+/// about cutoffs outside the computed spectrum.
+double ReinjectionGain(vtkSpectralFilter* self, const Design& design, double nyquist)
+{
+  const double highFrequencyGain = self->GetReinjectHighFrequencies()
+    ? HighFrequencyGain(design.Parameters, nyquist, design.Lambda)
+    : 0.0;
+  vtkManifoldHarmonicsCutoffs::WarnAboutCutoffs(
+    self, design.Given, design.Parameters, design.Lambda, nyquist, design.Gains, highFrequencyGain);
+  return highFrequencyGain;
+}
+
+/// Filters each job's signal and writes it onto the output, until an abort.
+void FilterSignals(vtkSpectralFilter* self,
+  const vtkManifoldHarmonicsArrays::Basis& basis,
+  const spectral::Vector& gains,
+  double highFrequencyGain,
+  const std::vector<FilterJob>& jobs,
+  vtkPointSet* output)
+{
+  const spectral::Vector mass = basis.MassVector();
+  for (std::size_t j = 0; j < jobs.size() && !self->AbortRequested(); ++j)
+  {
+    // The points no triangle uses (zero mass) keep their input values.
+    const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
+    const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
+    const spectral::RowMatrix y = basis.FilterSignal(
+      mass, gains, coefficients.View(), x.View(), highFrequencyGain, self->GetNumberOfThreads());
+    WriteSignal(
+      jobs[j], y, gains.asDiagonal() * coefficients.View(), self->GetReplaceInput(), output);
+    self->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
+  }
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 vtkSpectralFilter::vtkSpectralFilter()
-  : ControlPoints(vtkDoubleArray::New())
+  : vtkManifoldHarmonicsAlgorithm(POINT_SET_AND_TABLE)
+  , ControlPoints(vtkDoubleArray::New())
+  , MeshFigures(new vtkManifoldHarmonicsArrays::MeshFiguresCache)
 {
+  // The core's defaults (spectral::FilterParameters), in the default units (relative cutoffs).
+  const spectral::FilterParameters defaults;
   this->FilterKind = LOW_PASS;
   this->CutoffUnits = FRACTION_OF_HIGHEST;
   this->Cutoff = spectral::DefaultCutoffFraction;
-  this->UpperCutoff = 1.0;
-  this->Transition = 0.1;
-  this->Gain = 2.0;
-  this->Time = 0.0;
+  this->UpperCutoff = spectral::DefaultUpperCutoffFraction;
+  this->Transition = defaults.Transition;
+  this->Gain = defaults.Gain;
+  this->Time = defaults.Time;
   this->ReinjectHighFrequencies = true;
   this->ReplaceInput = false;
-  this->NumberOfThreads = 0;
   vtkManifoldHarmonicsCutoffs::InitialRanges(this->FrequencyRange, this->TimeRange);
-  this->SetNumberOfOutputPorts(2);
   this->ControlPoints->SetNumberOfComponents(2);
   this->AddControlPoint(0.0, 1.0);
   this->AddControlPoint(1.0, 0.0);
-}
-
-//------------------------------------------------------------------------------
-int vtkSpectralFilter::RequestDataObject(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkManifoldHarmonicsArrays::OutputLikeInput(inputVector, outputVector);
-}
-
-//------------------------------------------------------------------------------
-int vtkSpectralFilter::FillOutputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
-    return 1;
-  }
-  return this->Superclass::FillOutputPortInformation(port, info);
 }
 
 //------------------------------------------------------------------------------
@@ -365,22 +388,13 @@ void vtkSpectralFilter::RemoveAllControlPoints()
 }
 
 //------------------------------------------------------------------------------
-int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkSpectralFilter::Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* spectrum)
 {
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  vtkPointSet* output = vtkPointSet::GetData(outputVector, 0);
-  vtkTable* spectrum = vtkTable::GetData(outputVector, 1);
   output->ShallowCopy(input);
-  // Collective in a distributed run, so before any return.
-  vtkMultiProcessController* controller = vtkManifoldHarmonicsParallel::DistributedController();
-  // The Nyquist frequency, for the re-injection and for telling zero eigenvalues in the slider
-  // ranges (the edge sums are kept while the input does not change).
-  this->UpdateEdgeSums(input);
-  const double nyquist = ::NyquistFrequency(controller, { this->EdgeSums[0], this->EdgeSums[1] });
-  this->NyquistFrequency = nyquist;
-  const bool writeSpectrum = !controller || controller->GetLocalProcessId() == 0;
+  // Collective in a distributed run, so before any return: the Nyquist frequency, for the
+  // re-injection and for telling zero eigenvalues in the slider ranges.
+  vtkMultiProcessController* controller = GetDistributedController();
+  this->NyquistFrequency = ::NyquistFrequency(controller, this->MeshFigures->Of(input).EdgeSums);
   if (input->GetNumberOfPoints() == 0)
   {
     if (!controller)
@@ -389,117 +403,57 @@ int vtkSpectralFilter::RequestData(vtkInformation* vtkNotUsed(request),
     }
     return 1;
   }
-
   vtkManifoldHarmonicsArrays::Basis basis;
-  const std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  std::vector<FilterJob> jobs;
+  std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
+  problem = problem.empty() ? FindJobs(this, input, basis, jobs) : problem;
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
     return 0;
   }
-
-  std::vector<FilterJob> jobs;
-  const std::string mismatch = FindJobs(this, input, basis, jobs);
-  if (!mismatch.empty())
-  {
-    vtkErrorMacro(<< mismatch);
-    return 0;
-  }
   this->SetProgressText("Spectral filter");
-  try
+  const Design design = DesignFilter(
+    this, basis.EigenvalueVector(), this->NyquistFrequency, this->FrequencyRange, this->TimeRange);
+  if (!controller || controller->GetLocalProcessId() == 0)
   {
-    const spectral::Vector lambda = basis.EigenvalueVector();
-    const double firstNonZero = vtkManifoldHarmonicsCutoffs::FirstNonZeroEigenvalue(lambda, nyquist);
-    vtkManifoldHarmonicsCutoffs::SliderRanges(
-      lambda, firstNonZero, this->CutoffUnits, this->FrequencyRange, this->TimeRange);
-    // The parameters in the filter's units, validated there, then in frequencies.
-    const spectral::FilterParameters given = Parameters(this);
-    const spectral::FilterParameters parameters = spectral::ToAbsoluteUnits(
-      given, vtkManifoldHarmonicsCutoffs::ToFrequencyUnits(this->CutoffUnits), lambda, firstNonZero);
-    const spectral::Vector gains = spectral::Gains(parameters, lambda);
-    if (writeSpectrum)
-    {
-      FillSpectrum(lambda, gains, jobs, spectrum);
-    }
-    if (jobs.empty())
-    {
-      vtkWarningMacro(<< "Nothing to filter: no '<Array>" << Names::CoefficientsSuffix
-                      << "' field data; apply ManifoldHarmonicTransform upstream.");
-      return 1;
-    }
-    const double highFrequencyGain =
-      this->ReinjectHighFrequencies ? HighFrequencyGain(parameters, nyquist, lambda) : 0.0;
-    vtkManifoldHarmonicsCutoffs::WarnAboutCutoffs(
-      this, given, parameters, lambda, nyquist, gains, highFrequencyGain);
-    vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", CutoffUnits " << this->CutoffUnits
-                  << ", Cutoff " << this->Cutoff << " (frequency " << parameters.Cutoff << ")"
-                  << ", UpperCutoff " << this->UpperCutoff << ", Transition " << this->Transition
-                  << ", Gain " << this->Gain << ", Time " << this->Time << ", high-frequency gain "
-                  << highFrequencyGain);
-    const spectral::Vector mass = basis.MassVector();
-    for (std::size_t j = 0; j < jobs.size(); ++j)
-    {
-      // The points no triangle uses (zero mass) keep their input values.
-      const vtkManifoldHarmonicsArrays::Signal x(jobs[j].Source);
-      const vtkManifoldHarmonicsArrays::Signal coefficients(jobs[j].Coefficients);
-      const spectral::RowMatrix y = basis.FilterSignal(
-        mass, gains, coefficients.View(), x.View(), highFrequencyGain, this->NumberOfThreads);
-      WriteSignal(jobs[j], y, gains.asDiagonal() * coefficients.View(), this->ReplaceInput, output);
-      this->UpdateProgress(static_cast<double>(j + 1) / static_cast<double>(jobs.size()));
-      if (this->GetAbortExecute())
-      {
-        // An aborted filter's output is empty (as VTK's executive has it), on both ports.
-        output->Initialize();
-        spectrum->Initialize();
-        return 1;
-      }
-    }
+    FillSpectrum(design.Lambda, design.Gains, jobs, spectrum);
   }
-  catch (const std::exception& e)
+  if (jobs.empty())
   {
-    vtkErrorMacro(<< "Spectral filter failed: " << e.what());
-    return 0;
+    vtkWarningMacro(<< "Nothing to filter: no '<Array>" << Names::CoefficientsSuffix
+                    << "' field data; apply ManifoldHarmonicTransform upstream.");
+    return 1;
   }
+  vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", CutoffUnits " << this->CutoffUnits
+                << ", Cutoff " << this->Cutoff << " (frequency " << design.Parameters.Cutoff
+                << ")");
+  FilterSignals(
+    this, basis, design.Gains, ReinjectionGain(this, design, this->NyquistFrequency), jobs, output);
   return 1;
-}
-
-//------------------------------------------------------------------------------
-void vtkSpectralFilter::UpdateEdgeSums(vtkPointSet* input)
-{
-  // The mesh is walked again only when the input changed (a new upstream execution, or another
-  // input object, which may have the same MTime): changing the filter's settings alone re-uses
-  // the sums.
-  if (input != this->EdgeSumsInput.GetPointer() || input->GetMTime() != this->EdgeSumsTime)
-  {
-    const std::vector<double> sums = vtkManifoldHarmonicsArrays::EdgeSums(input);
-    this->EdgeSums[0] = sums[0];
-    this->EdgeSums[1] = sums[1];
-    this->EdgeSumsInput = input;
-    this->EdgeSumsTime = input->GetMTime();
-  }
 }
 
 //------------------------------------------------------------------------------
 void vtkSpectralFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FilterKind: " << this->FilterKind << " (default 0, LOW_PASS)\n";
-  os << indent << "CutoffUnits: " << this->CutoffUnits << " (default 1, FRACTION_OF_HIGHEST)\n";
-  os << indent << "Cutoff: " << this->Cutoff << " (default " << spectral::DefaultCutoffFraction
-     << ")\n";
-  os << indent << "UpperCutoff: " << this->UpperCutoff << " (default 1)\n";
-  os << indent << "Transition: " << this->Transition << " (default 0.1)\n";
-  os << indent << "Gain: " << this->Gain << " (default 2)\n";
-  os << indent << "Time: " << this->Time << " (default 0)\n";
+  namespace Enums = vtkManifoldHarmonicsEnums;
+  os << indent << "FilterKind: " << Enums::Name(Enums::FilterKind, this->FilterKind) << "\n";
+  os << indent << "CutoffUnits: " << Enums::Name(Enums::CutoffUnits, this->CutoffUnits) << "\n";
+  os << indent << "Cutoff: " << this->Cutoff << "\n";
+  os << indent << "UpperCutoff: " << this->UpperCutoff << "\n";
+  os << indent << "Transition: " << this->Transition << "\n";
+  os << indent << "Gain: " << this->Gain << "\n";
+  os << indent << "Time: " << this->Time << "\n";
   os << indent << "ControlPoints:";
   for (vtkIdType i = 0; i < this->ControlPoints->GetNumberOfTuples(); ++i)
   {
     os << " (" << this->ControlPoints->GetTypedComponent(i, 0) << ", "
        << this->ControlPoints->GetTypedComponent(i, 1) << ")";
   }
-  os << " (default (0, 1) (1, 0))\n";
+  os << "\n";
   os << indent << "ReinjectHighFrequencies: " << (this->ReinjectHighFrequencies ? "On" : "Off")
-     << " (default On)\n";
-  os << indent << "ReplaceInput: " << (this->ReplaceInput ? "On" : "Off") << " (default Off)\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << " (default 0, all cores)\n";
+     << "\n";
+  os << indent << "ReplaceInput: " << (this->ReplaceInput ? "On" : "Off") << "\n";
+  os << indent << "NyquistFrequency: " << this->NyquistFrequency << "\n";
 }

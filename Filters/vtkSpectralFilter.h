@@ -80,14 +80,19 @@
 #ifndef vtkSpectralFilter_h
 #define vtkSpectralFilter_h
 
+#include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkPointSetAlgorithm.h"
-#include "vtkWeakPointer.h" // For the input of the kept edge sums
+
+#include <memory> // For the mesh figures
 
 class vtkDoubleArray;
 class vtkTable;
+namespace vtkManifoldHarmonicsArrays
+{
+class MeshFiguresCache;
+}
 
-class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkPointSetAlgorithm
+class VTKMANIFOLDHARMONICS_EXPORT vtkSpectralFilter : public vtkManifoldHarmonicsAlgorithm
 {
 public:
   ///@{
@@ -95,7 +100,7 @@ public:
    * Standard methods for instantiation, type information, and printing.
    */
   static vtkSpectralFilter* New();
-  vtkTypeMacro(vtkSpectralFilter, vtkPointSetAlgorithm);
+  vtkTypeMacro(vtkSpectralFilter, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
   ///@}
 
@@ -244,16 +249,6 @@ public:
   vtkBooleanMacro(ReplaceInput, bool);
   ///@}
 
-  ///@{
-  /**
-   * Number of threads the filter stage splits the rows of the basis over; 0 uses all the
-   * machine's cores (the core's rule, Filters/Spectral/Common/Threads.h). Results of different
-   * thread counts are the same. Range [0, VTK_INT_MAX]. Default is 0.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
   /**
    * Suffix of the filtered arrays added when ReplaceInput is off: `_Filtered`.
    */
@@ -285,9 +280,9 @@ public:
    * spectral::IsZeroEigenvalue (Filters/Spectral/Common/Eigenvalues.h) with the scale omega_N^2
    * (omega_N the Nyquist frequency, see the class documentation). Before the first
    * execution, and after one on a basis of constant harmonics only, [0, 1] and [0, 1] (or
-   * [0, m - 1] for harmonic indices, [0, 2] for absolute frequencies): the panel takes its default values from these ranges
-   * (Cutoff at the middle, UpperCutoff at the top, Time at the bottom), which keeps them at the
-   * defaults 0.5, 1 and 0.
+   * [0, m - 1] for harmonic indices, [0, 2] for absolute frequencies): the panel takes its default
+   * values from these ranges (Cutoff at the middle, UpperCutoff at the top, Time at the bottom),
+   * which keeps them at the defaults 0.5, 1 and 0.
    */
   vtkGetVector2Macro(FrequencyRange, double);
   vtkGetVector2Macro(TimeRange, double);
@@ -305,15 +300,9 @@ protected:
   vtkSpectralFilter();
   ~vtkSpectralFilter() override;
 
-  int FillOutputPortInformation(int port, vtkInformation* info) override;
-  /// Output port 0 has the type of the input (any vtkPointSet); port 1 is a vtkTable.
-  int RequestDataObject(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
-  int RequestData(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
+  /// The stages of a request (see vtkManifoldHarmonicsAlgorithm for errors and aborts).
+  int Execute(vtkPointSet* input, vtkPointSet* output, vtkTable* spectrum) override;
+  const char* GetWorkName() override { return "Spectral filter"; }
 
   int FilterKind;
   int CutoffUnits;
@@ -324,20 +313,14 @@ protected:
   double Time;
   bool ReinjectHighFrequencies;
   bool ReplaceInput;
-  int NumberOfThreads;
   vtkDoubleArray* ControlPoints;
 
   /**
-   * The sum of the edge lengths of the input's triangles (ghost cells left out) and their number,
-   * behind the Nyquist frequency of the re-injection, kept with the input object they were
-   * computed on (EdgeSumsInput) and its MTime then (EdgeSumsTime): when only the filter's settings
-   * change, the mesh is not walked again. Another input object recomputes them even with the same
-   * MTime (as vtkManifoldHarmonicSmoothing keys its basis).
+   * The edge sums of the input's cells (ghost cells left out) behind the Nyquist frequency of the
+   * re-injection, computed once per input object and MTime: when only the filter's settings
+   * change, the mesh is not walked again.
    */
-  void UpdateEdgeSums(vtkPointSet* input);
-  double EdgeSums[2] = { 0.0, 0.0 };
-  vtkWeakPointer<vtkPointSet> EdgeSumsInput;
-  vtkMTimeType EdgeSumsTime = 0;
+  std::unique_ptr<vtkManifoldHarmonicsArrays::MeshFiguresCache> MeshFigures;
 
   double FrequencyRange[2];
   double TimeRange[2];

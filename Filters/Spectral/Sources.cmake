@@ -30,6 +30,7 @@ set(spectral_core_sources
   )
 set(spectral_core_headers
   Basis.h
+  Common/Constants.h
   Common/Defaults.h
   Common/Eigenvalues.h
   Operators/Laplacian.h

@@ -25,6 +25,8 @@ constexpr int DefaultNumberOfNeighbors = 30;
 /// any scale and for any number of harmonics (an absolute cutoff collapses a small model to its
 /// centroid and leaves a large one unchanged).
 constexpr double DefaultCutoffFraction = 0.5;
+/// The upper band edge (band filters) in the same units: the highest computed frequency.
+constexpr double DefaultUpperCutoffFraction = 1.0;
 } // namespace spectral
 
 #endif

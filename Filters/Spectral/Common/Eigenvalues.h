@@ -21,6 +21,8 @@
 #ifndef spectral_Eigenvalues_h
 #define spectral_Eigenvalues_h
 
+#include "Common/Constants.h"
+
 #include <cmath>
 
 namespace spectral
@@ -50,8 +52,7 @@ inline bool IsZeroEigenvalue(double lambda, double scale)
  */
 inline double WeylEigenvalue(double k, double measure, int dimension)
 {
-  const double pi = 3.14159265358979323846;
-  return dimension == 3 ? std::pow(6.0 * pi * pi * k / measure, 2.0 / 3.0) : 4.0 * pi * k / measure;
+  return dimension == 3 ? std::pow(6.0 * Pi * Pi * k / measure, 2.0 / 3.0) : 4.0 * Pi * k / measure;
 }
 } // namespace spectral
 

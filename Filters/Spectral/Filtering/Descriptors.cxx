@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Spectral shape descriptors as sums over the eigenpairs of a basis (see Descriptors.h).
 #include "Filtering/Descriptors.h"
+#include "Common/Constants.h"
+#include "Common/Eigenvalues.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +15,42 @@ namespace spectral
 {
 namespace
 {
+/// Weyl's estimate of sum_{k >= M} e^{-rate k^(2/3)} in a volume (rate = t lambda_1 by Weyl):
+/// the integral of e^{-rate x^(2/3)} over x >= M - 1/2, which is
+/// 3/2 rate^(-3/2) Gamma(3/2, z) with z = rate (M - 1/2)^(2/3) and
+/// Gamma(3/2, z) = sqrt(z) e^{-z} + sqrt(pi) / 2 erfc(sqrt(z)).
+double VolumeWeylTail(double rate, double count)
+{
+  const double z = rate * std::pow(std::max(count - 0.5, 0.0), 2.0 / 3.0);
+  const double root = std::sqrt(z);
+  const double gamma = root * std::exp(-z) + 0.5 * std::sqrt(Pi) * std::erfc(root);
+  return 1.5 * std::pow(rate, -1.5) * gamma;
+}
+
+/// The smallest M >= 1 with VolumeWeylTail(rate, M) <= tolerance * trace (the tail decreases
+/// with M): doubling, then bisection. The largest int when no int is enough.
+int VolumeHarmonicsNeeded(double rate, double trace, double tolerance)
+{
+  const double target = tolerance * trace;
+  const double most = static_cast<double>(std::numeric_limits<int>::max());
+  double high = 1.0;
+  while (VolumeWeylTail(rate, high) > target)
+  {
+    high *= 2.0;
+    if (high > most)
+    {
+      return std::numeric_limits<int>::max();
+    }
+  }
+  double low = std::floor(high / 2.0); // the tail at low is above the target, or low < 1
+  while (high - low > 1.0)
+  {
+    const double middle = std::floor(0.5 * (low + high));
+    (VolumeWeylTail(rate, middle) > target ? low : high) = middle;
+  }
+  return static_cast<int>(high);
+}
+
 /// Rows of the basis converted to double per block: the descriptors read H once.
 constexpr Eigen::Index BlockRows = 256;
 
@@ -250,11 +288,19 @@ RowMatrix HeatKernelSignature(const FloatBasisView& H,
 }
 
 //------------------------------------------------------------------------------
-int HeatKernelHarmonicsNeeded(const Spectrum& spectrum, double area, double time, double tolerance)
+int HeatKernelHarmonicsNeeded(const Spectrum& spectrum,
+  double measure,
+  int dimension,
+  double time,
+  double tolerance)
 {
-  if (!(area > 0.0 && std::isfinite(area)))
+  if (!(measure > 0.0 && std::isfinite(measure)))
   {
-    throw InvalidInput("the area must be a positive finite number");
+    throw InvalidInput("the area or volume must be a positive finite number");
+  }
+  if (dimension != 2 && dimension != 3)
+  {
+    throw InvalidInput("the dimension must be 2 (a surface) or 3 (a volume)");
   }
   if (!(tolerance > 0.0 && tolerance < 1.0))
   {
@@ -265,11 +311,17 @@ int HeatKernelHarmonicsNeeded(const Spectrum& spectrum, double area, double time
   {
     return std::numeric_limits<int>::max();
   }
-  // Weyl: lambda_k ~ 4 pi k / A, so sum_{k >= M} e^{-lambda_k t} ~ q^M / (1 - q).
-  const double logQ = -4.0 * 3.14159265358979323846 * time / area;
-  const double oneMinusQ = -std::expm1(logQ);
-  const double m = static_cast<double>(spectrum.Lambda.size());
   const double computed = HeatTrace(spectrum, Vector::Constant(1, time))[0];
+  const double m = static_cast<double>(spectrum.Lambda.size());
+  // Weyl: lambda_k ~ WeylEigenvalue(1) k^(2 / dimension).
+  const double rate = time * WeylEigenvalue(1.0, measure, dimension);
+  if (dimension == 3)
+  {
+    return VolumeHarmonicsNeeded(rate, computed + VolumeWeylTail(rate, m), tolerance);
+  }
+  // On a surface lambda_k ~ 4 pi k / A, so sum_{k >= M} e^{-lambda_k t} ~ q^M / (1 - q).
+  const double logQ = -rate;
+  const double oneMinusQ = -std::expm1(logQ);
   const double trace = computed + std::exp(m * logQ) / oneMinusQ;
   // The smallest M with q^M / (1 - q) <= tolerance * trace.
   const double needed = std::ceil(std::log(tolerance * trace * oneMinusQ) / logQ);

@@ -95,17 +95,24 @@ RowMatrix HeatKernelSignature(const FloatBasisView& H,
 /**
  * How many harmonics the heat kernel at time t needs for a relative truncation error of its
  * trace below `tolerance`: the smallest M with sum_{k >= M} e^{-lambda_k t} <= tolerance Z(t).
- * The eigenvalues beyond the computed ones are estimated by Weyl's law for a surface of area A,
- * lambda_k ~ 4 pi k / A, so that the tail is the geometric series q^M / (1 - q) with
- * q = e^{-4 pi t / A}; Z(t) is the computed trace plus that estimate of the tail beyond m. The
- * trace bounds the signature's error on average: the mass-weighted mean of HKS(., t) is Z(t)/A.
- * \param area A > 0, the total area (the sum of the lumped mass).
+ * The eigenvalues beyond the computed ones are estimated by Weyl's law (WeylEigenvalue,
+ * Common/Eigenvalues.h): on a surface of area A, lambda_k ~ 4 pi k / A, so that the tail is the
+ * geometric series q^M / (1 - q) with q = e^{-4 pi t / A}; in a volume V,
+ * lambda_k ~ c k^(2/3) with c = (6 pi^2 / V)^(2/3), whose tail is estimated by the integral
+ * of e^{-c t x^(2/3)} over x >= M - 1/2 (an incomplete gamma function). Z(t) is the computed
+ * trace plus that estimate of the tail beyond m. The trace bounds the signature's error on
+ * average: the mass-weighted mean of HKS(., t) is Z(t) / measure.
+ * \param measure The total area (dimension 2) or volume (dimension 3), > 0: the sum of the
+ *        lumped mass.
+ * \param dimension 2 for a surface, 3 for a volume.
  * \param time t >= 0; t = 0 needs every harmonic and returns the largest int.
  * \return M, at least 1. The basis is long enough when M <= m.
- * \throws InvalidInput for a non-positive area, a negative time or a tolerance outside (0, 1).
+ * \throws InvalidInput for a non-positive measure, a dimension other than 2 and 3, a negative
+ *         time or a tolerance outside (0, 1).
  */
 int HeatKernelHarmonicsNeeded(const Spectrum& spectrum,
-  double area,
+  double measure,
+  int dimension,
   double time,
   double tolerance = DefaultTruncationTolerance);
 

@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Filtering/Transfer.h"
 
-#include "Operators/Operators.h"
+#include "Common/Constants.h"
 #include "Common/Threads.h"
+#include "Operators/Operators.h"
 
 #include <algorithm>
 #include <array>
@@ -16,7 +17,6 @@ namespace spectral
 {
 namespace
 {
-const double Pi = 3.14159265358979323846;
 
 std::string Str(double value)
 {
@@ -109,7 +109,9 @@ double Interpolate(const std::vector<std::pair<double, double>>& points, double 
   {
     return points.back().second;
   }
-  const auto upper = std::upper_bound(points.begin(), points.end(), omega,
+  const auto upper = std::upper_bound(points.begin(),
+    points.end(),
+    omega,
     [](double w, const std::pair<double, double>& point) { return w < point.first; });
   const auto lower = upper - 1;
   const double s = (omega - lower->first) / (upper->first - lower->first);
@@ -143,15 +145,16 @@ double Evaluate(const FilterParameters& p, double omega)
 
 void RequireFrequency(double omega)
 {
-  Require(std::isfinite(omega) && omega >= 0.0,
-    "a frequency must be finite and >= 0, not " + Str(omega));
+  Require(
+    std::isfinite(omega) && omega >= 0.0, "a frequency must be finite and >= 0, not " + Str(omega));
 }
 
 /// Where F or one of its derivatives may jump: the ends of every step, the control points.
 std::vector<double> Breakpoints(const FilterParameters& p)
 {
   std::vector<double> out;
-  auto addStep = [&p, &out](double c) {
+  auto addStep = [&p, &out](double c)
+  {
     out.push_back(c * (1.0 - 0.5 * p.Transition));
     out.push_back(c);
     out.push_back(c * (1.0 + 0.5 * p.Transition));
@@ -243,23 +246,27 @@ double Integrate(const FilterParameters& p, double a, double b)
 }
 
 /// Rows [first, first + count) of a double basis, in place.
-Eigen::Map<const RowMatrix> DoubleRows(
-  const BasisView& H, Eigen::Index first, Eigen::Index count, RowMatrix&)
+Eigen::Map<const RowMatrix> DoubleRows(const BasisView& H,
+  Eigen::Index first,
+  Eigen::Index count,
+  RowMatrix&)
 {
   return Eigen::Map<const RowMatrix>(H.data() + first * H.cols(), count, H.cols());
 }
 
 /// Rows [first, first + count) of a float basis, converted to double into `buffer` (one block
 /// of BlockRows rows, reused from block to block: the basis itself is never copied).
-Eigen::Map<const RowMatrix> DoubleRows(
-  const FloatBasisView& H, Eigen::Index first, Eigen::Index count, RowMatrix& buffer)
+Eigen::Map<const RowMatrix> DoubleRows(const FloatBasisView& H,
+  Eigen::Index first,
+  Eigen::Index count,
+  RowMatrix& buffer)
 {
   buffer = H.middleRows(first, count).cast<double>();
   return Eigen::Map<const RowMatrix>(buffer.data(), count, H.cols());
 }
 
 /// X~ = H^T D X over row ranges on `threads` threads, one partial sum per range.
-template <typename Basis>
+template<typename Basis>
 RowMatrix Forward(const Basis& H, const Vector& mass, const ConstRowView& X, int threads)
 {
   Require(mass.size() == H.rows() && X.rows() == H.rows(),
@@ -269,8 +276,10 @@ RowMatrix Forward(const Basis& H, const Vector& mass, const ConstRowView& X, int
   std::vector<RowMatrix> partial(
     static_cast<std::size_t>(parts), RowMatrix::Zero(H.cols(), X.cols()));
   const Eigen::Index block = BlockRows(H.cols());
-  ForEachRowRange(H.rows(), parts,
-    [&H, &mass, &X, &partial, block](int part, Eigen::Index first, Eigen::Index count) {
+  ForEachRowRange(H.rows(),
+    parts,
+    [&H, &mass, &X, &partial, block](int part, Eigen::Index first, Eigen::Index count)
+    {
       RowMatrix buffer;
       RowMatrix weighted;
       RowMatrix& sum = partial[static_cast<std::size_t>(part)];
@@ -298,9 +307,13 @@ RowMatrix Forward(const Basis& H, const Vector& mass, const ConstRowView& X, int
 }
 
 /// Y = H diag(gains - hf) X~ + hf X over row ranges on `threads` threads.
-template <typename Basis>
-RowMatrix Inverse(const Basis& H, const Vector& gains, const ConstRowView& coefficients,
-  const ConstRowView& X, double hfGain, int threads)
+template<typename Basis>
+RowMatrix Inverse(const Basis& H,
+  const Vector& gains,
+  const ConstRowView& coefficients,
+  const ConstRowView& X,
+  double hfGain,
+  int threads)
 {
   const Eigen::Index n = H.rows();
   const Eigen::Index c = coefficients.cols();
@@ -322,8 +335,10 @@ RowMatrix Inverse(const Basis& H, const Vector& gains, const ConstRowView& coeff
   const DenseMatrix scaled = (gains.array() - hfGain).matrix().asDiagonal() * coefficients;
   RowMatrix Y(n, c);
   const Eigen::Index block = BlockRows(H.cols());
-  ForEachRowRange(n, TransformThreads(n, H.cols(), threads),
-    [&H, &X, &scaled, &Y, hfGain, block](int, Eigen::Index first, Eigen::Index count) {
+  ForEachRowRange(n,
+    TransformThreads(n, H.cols(), threads),
+    [&H, &X, &scaled, &Y, hfGain, block](int, Eigen::Index first, Eigen::Index count)
+    {
       RowMatrix buffer;
       for (Eigen::Index i = first; i < first + count; i += block)
       {
@@ -365,44 +380,66 @@ RowMatrix KeepOutsidePoints(const Vector& mass, const ConstRowView& X, RowMatrix
 } // namespace
 
 //------------------------------------------------------------------------------
-RowMatrix ForwardTransform(
-  const BasisView& H, const Vector& mass, const ConstRowView& X, int threads)
+RowMatrix ForwardTransform(const BasisView& H,
+  const Vector& mass,
+  const ConstRowView& X,
+  int threads)
 {
   return Forward(H, mass, X, threads);
 }
 
 //------------------------------------------------------------------------------
-RowMatrix ForwardTransform(
-  const FloatBasisView& H, const Vector& mass, const ConstRowView& X, int threads)
+RowMatrix ForwardTransform(const FloatBasisView& H,
+  const Vector& mass,
+  const ConstRowView& X,
+  int threads)
 {
   return Forward(H, mass, X, threads);
 }
 
 //------------------------------------------------------------------------------
-RowMatrix InverseTransform(const BasisView& H, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+RowMatrix InverseTransform(const BasisView& H,
+  const Vector& gains,
+  const ConstRowView& coefficients,
+  const ConstRowView& X,
+  double hfGain,
+  int threads)
 {
   return Inverse(H, gains, coefficients, X, hfGain, threads);
 }
 
 //------------------------------------------------------------------------------
-RowMatrix InverseTransform(const FloatBasisView& H, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+RowMatrix InverseTransform(const FloatBasisView& H,
+  const Vector& gains,
+  const ConstRowView& coefficients,
+  const ConstRowView& X,
+  double hfGain,
+  int threads)
 {
   return Inverse(H, gains, coefficients, X, hfGain, threads);
 }
 
 //------------------------------------------------------------------------------
-RowMatrix FilterSignal(const BasisView& H, const Vector& mass, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+RowMatrix FilterSignal(const BasisView& H,
+  const Vector& mass,
+  const Vector& gains,
+  const ConstRowView& coefficients,
+  const ConstRowView& X,
+  double hfGain,
+  int threads)
 {
   RequireSurfaceSignal(H.rows(), mass, X);
   return KeepOutsidePoints(mass, X, Inverse(H, gains, coefficients, X, hfGain, threads));
 }
 
 //------------------------------------------------------------------------------
-RowMatrix FilterSignal(const FloatBasisView& H, const Vector& mass, const Vector& gains,
-  const ConstRowView& coefficients, const ConstRowView& X, double hfGain, int threads)
+RowMatrix FilterSignal(const FloatBasisView& H,
+  const Vector& mass,
+  const Vector& gains,
+  const ConstRowView& coefficients,
+  const ConstRowView& X,
+  double hfGain,
+  int threads)
 {
   RequireSurfaceSignal(H.rows(), mass, X);
   return KeepOutsidePoints(mass, X, Inverse(H, gains, coefficients, X, hfGain, threads));
@@ -456,8 +493,10 @@ double HarmonicFrequency(const Vector& lambda, double index)
 }
 
 //------------------------------------------------------------------------------
-FilterParameters ToAbsoluteUnits(const FilterParameters& p, FrequencyUnits units,
-  const Vector& lambda, double firstNonZeroEigenvalue)
+FilterParameters ToAbsoluteUnits(const FilterParameters& p,
+  FrequencyUnits units,
+  const Vector& lambda,
+  double firstNonZeroEigenvalue)
 {
   Validate(p);
   if (units == FrequencyUnits::Absolute)
@@ -476,8 +515,9 @@ FilterParameters ToAbsoluteUnits(const FilterParameters& p, FrequencyUnits units
   if (p.Kind != FilterKind::HeatDiffusion && p.Kind != FilterKind::Custom)
   {
     out.Cutoff = frequency(p.Cutoff);
-    out.UpperCutoff =
-      std::isfinite(p.UpperCutoff) && p.UpperCutoff >= 0.0 ? frequency(p.UpperCutoff) : p.UpperCutoff;
+    out.UpperCutoff = std::isfinite(p.UpperCutoff) && p.UpperCutoff >= 0.0
+      ? frequency(p.UpperCutoff)
+      : p.UpperCutoff;
   }
   for (auto& point : out.ControlPoints)
   {
@@ -499,8 +539,8 @@ double NyquistFrequency(const TriangleMesh& mesh)
 {
   const double edges = EdgeCount(mesh);
   const double nyquist = NyquistFrequency(MeanEdgeLength(mesh) * edges, edges);
-  Require(nyquist > 0.0,
-    "the Nyquist frequency needs a mesh with cells of non-zero, finite edge length");
+  Require(
+    nyquist > 0.0, "the Nyquist frequency needs a mesh with cells of non-zero, finite edge length");
   return nyquist;
 }
 

@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/Verification.h"
+#include "Common/Constants.h"
 #include "Common/Eigenvalues.h"
 #include "Common/Threads.h"
 #include "Solver/BlockProducts.h"
@@ -19,8 +20,7 @@ namespace spectral
 //------------------------------------------------------------------------------
 double AchievableResidual(double top, double diameter, double& ratio)
 {
-  const double pi = 3.14159265358979323846;
-  ratio = top * diameter * diameter / (pi * pi);
+  ratio = top * diameter * diameter / (Pi * Pi);
   return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
 }
 
