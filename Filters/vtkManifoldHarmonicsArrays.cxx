@@ -449,6 +449,44 @@ std::string CoreMesh::PointCloudWarning(int numberOfNeighbors) const
 
 namespace
 {
+/// What ToCoreMesh makes of a cell type: the one rule of which cells make a surface or a volume.
+enum class CellKind
+{
+  Surface,    ///< triangles, and polygons, quadrilaterals, pixels and strips split into them
+  Volume,     ///< tetrahedra, and hexahedra, voxels, wedges and pyramids split into them
+  Vertex,     ///< vertices (and empty cells): left out; alone, a point cloud
+  Line,       ///< lines and polylines: left out
+  Unsupported ///< quadratic, polyhedral and other cells: refused
+};
+
+CellKind KindOfCell(int type)
+{
+  switch (type)
+  {
+    case VTK_TRIANGLE:
+    case VTK_QUAD:
+    case VTK_POLYGON:
+    case VTK_PIXEL:
+    case VTK_TRIANGLE_STRIP:
+      return CellKind::Surface;
+    case VTK_TETRA:
+    case VTK_HEXAHEDRON:
+    case VTK_WEDGE:
+    case VTK_PYRAMID:
+    case VTK_VOXEL:
+      return CellKind::Volume;
+    case VTK_EMPTY_CELL:
+    case VTK_VERTEX:
+    case VTK_POLY_VERTEX:
+      return CellKind::Vertex;
+    case VTK_LINE:
+    case VTK_POLY_LINE:
+      return CellKind::Line;
+    default:
+      return CellKind::Unsupported;
+  }
+}
+
 /// The faces of the linear 3-D cells, as local point ids in cyclic order.
 using Faces = std::vector<std::vector<int>>;
 const Faces HexahedronFaces = { { 0, 3, 2, 1 },
@@ -514,76 +552,78 @@ struct Collector
   /// Adds one input cell; counts it in `out`.
   void Add(int type, vtkIdType npts, const vtkIdType* pts, CoreMesh& out)
   {
-    switch (type)
+    switch (KindOfCell(type))
     {
-      case VTK_TRIANGLE:
+      case CellKind::Surface:
         ++out.SurfaceCells;
-        this->Triangle(pts[0], pts[1], pts[2]);
+        out.SplitPolygons += type == VTK_TRIANGLE ? 0 : 1;
+        this->AddSurfaceCell(type, npts, pts);
         break;
-      case VTK_QUAD:
-      case VTK_POLYGON:
-        ++out.SurfaceCells;
-        ++out.SplitPolygons;
-        for (vtkIdType c = 1; c + 1 < npts; ++c)
-        {
-          this->Triangle(pts[0], pts[c], pts[c + 1]);
-        }
-        break;
-      case VTK_PIXEL:
-        ++out.SurfaceCells;
-        ++out.SplitPolygons;
-        this->Triangle(pts[0], pts[1], pts[3]);
-        this->Triangle(pts[0], pts[3], pts[2]);
-        break;
-      case VTK_TRIANGLE_STRIP:
-        ++out.SurfaceCells;
-        ++out.SplitPolygons;
-        for (vtkIdType c = 0; c + 2 < npts; ++c)
-        {
-          this->Triangle(pts[c], pts[c + 1], pts[c + 2]);
-        }
-        break;
-      case VTK_TETRA:
+      case CellKind::Volume:
         ++out.VolumeCells;
-        this->Tets.insert(this->Tets.end(),
-          { static_cast<int>(pts[0]),
-            static_cast<int>(pts[1]),
-            static_cast<int>(pts[2]),
-            static_cast<int>(pts[3]) });
+        out.SplitVolumeCells += type == VTK_TETRA ? 0 : 1;
+        this->AddVolumeCell(type, pts);
         break;
-      case VTK_HEXAHEDRON:
-      case VTK_WEDGE:
-      case VTK_PYRAMID:
-        ++out.VolumeCells;
-        ++out.SplitVolumeCells;
-        this->Split(pts,
-          type == VTK_HEXAHEDRON ? HexahedronFaces
-                                 : (type == VTK_WEDGE ? WedgeFaces : PyramidFaces));
-        break;
-      case VTK_VOXEL:
-      {
-        ++out.VolumeCells;
-        ++out.SplitVolumeCells;
-        const vtkIdType hexahedron[8] = {
-          pts[0], pts[1], pts[3], pts[2], pts[4], pts[5], pts[7], pts[6]
-        };
-        this->Split(hexahedron, HexahedronFaces);
-        break;
-      }
-      case VTK_EMPTY_CELL:
-      case VTK_VERTEX:
-      case VTK_POLY_VERTEX:
+      case CellKind::Vertex:
         ++out.VertexCells;
         break;
-      case VTK_LINE:
-      case VTK_POLY_LINE:
+      case CellKind::Line:
         ++out.LineCells;
         break;
-      default:
+      case CellKind::Unsupported:
         if (out.UnsupportedCells++ == 0)
         {
           out.UnsupportedType = vtkCellTypes::GetClassNameFromTypeId(type);
         }
+    }
+  }
+
+  /// The triangles of a 2-D cell (KindOfCell Surface): a fan from its first point.
+  void AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts)
+  {
+    if (type == VTK_PIXEL)
+    {
+      this->Triangle(pts[0], pts[1], pts[3]);
+      this->Triangle(pts[0], pts[3], pts[2]);
+    }
+    else if (type == VTK_TRIANGLE_STRIP)
+    {
+      for (vtkIdType c = 0; c + 2 < npts; ++c)
+      {
+        this->Triangle(pts[c], pts[c + 1], pts[c + 2]);
+      }
+    }
+    else
+    {
+      for (vtkIdType c = 1; c + 1 < npts; ++c)
+      {
+        this->Triangle(pts[0], pts[c], pts[c + 1]);
+      }
+    }
+  }
+
+  /// The tetrahedra of a 3-D cell (KindOfCell Volume).
+  void AddVolumeCell(int type, const vtkIdType* pts)
+  {
+    if (type == VTK_TETRA)
+    {
+      this->Tets.insert(this->Tets.end(),
+        { static_cast<int>(pts[0]),
+          static_cast<int>(pts[1]),
+          static_cast<int>(pts[2]),
+          static_cast<int>(pts[3]) });
+    }
+    else if (type == VTK_VOXEL)
+    {
+      const vtkIdType hexahedron[8] = {
+        pts[0], pts[1], pts[3], pts[2], pts[4], pts[5], pts[7], pts[6]
+      };
+      this->Split(hexahedron, HexahedronFaces);
+    }
+    else
+    {
+      this->Split(pts,
+        type == VTK_HEXAHEDRON ? HexahedronFaces : (type == VTK_WEDGE ? WedgeFaces : PyramidFaces));
     }
   }
 };
@@ -656,19 +696,20 @@ bool HasCellsOrIsPointCloud(vtkPointSet* input)
   }
   if (vtkPolyData* polyData = vtkPolyData::SafeDownCast(input))
   {
+    // Without building its cell map: polygons and strips are surface cells, the rest vertices
+    // and lines.
     return polyData->GetNumberOfPolys() + polyData->GetNumberOfStrips() > 0 ||
       polyData->GetNumberOfLines() == 0;
   }
   bool others = false; // lines, or cells of a kind ToCoreMesh does not take
   for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
   {
-    const unsigned char type = static_cast<unsigned char>(input->GetCellType(c));
-    const int dimension = vtkCellTypes::GetDimension(type);
-    if (dimension >= 2 && vtkCellTypes::IsLinear(type))
+    const CellKind kind = KindOfCell(input->GetCellType(c));
+    if (kind == CellKind::Surface || kind == CellKind::Volume)
     {
       return true;
     }
-    others = others || dimension != 0;
+    others = others || kind != CellKind::Vertex;
   }
   return !others;
 }
