@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -574,36 +575,51 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
 #endif
 
 //------------------------------------------------------------------------------
-// Welds the seams (when `weld`), solves, and writes the basis onto a shallow copy of `input`.
-void SolveAndWrite(vtkManifoldHarmonicBasis* self,
-  const vtkManifoldHarmonicsArrays::CoreMesh& cells,
+// The basis of the core on `output` (a shallow copy of `input`): each row on its point, or on
+// every copy of a welded point (the copies but one flagged as duplicates).
+void WriteBasis(vtkPointSet* output,
   vtkPointSet* input,
-  vtkPointSet* output,
-  bool weld,
-  const spectral::Monitor& monitor)
+  const spectral::BasisResult& basis,
+  const vtkManifoldHarmonicsParallel::Welding& welding,
+  bool floats)
 {
-  // The seam rule of every path: coincident points are one point (their copies get its rows).
-  vtkManifoldHarmonicsParallel::Welding welding;
-  spectral::TriangleMesh welded;
-  const spectral::TriangleMesh& mesh =
-    weld && WeldMesh(cells.Mesh, input, self->GetSeamTolerance(), welding, welded) ? welded
-                                                                                   : cells.Mesh;
-  const spectral::BasisResult basis = spectral::ComputeBasis(mesh, CoreOptions(self), monitor);
-  self->SetProgressText("Write");
-  output->ShallowCopy(input);
   const vtkIdType numPts = input->GetNumberOfPoints();
   AddBasisArrays(output,
     basis.Pairs,
     Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
     basis.LumpedMass,
-    self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
+    floats);
   if (welding.Merged())
   {
     AddPointGhosts(output, input, WeldedDuplicates(welding));
   }
-  self->UpdateProgress(1.0);
+}
+
+//------------------------------------------------------------------------------
+// The harmonics and lumped mass of the core's basis as rows of every point of a mesh of
+// `numPts` points (zero on the points no cell uses), for the scatter of a distributed run.
+void FullRows(const spectral::BasisResult& basis,
+  vtkIdType numPts,
+  spectral::RowMatrix& harmonics,
+  spectral::Vector& mass)
+{
+  const spectral::DenseMatrix& H = basis.Pairs.Eigenvectors;
+  harmonics = spectral::RowMatrix::Zero(numPts, H.cols());
+  mass = spectral::Vector::Zero(numPts);
+  for (std::size_t r = 0; r < basis.InputPointIds.size(); ++r)
+  {
+    harmonics.row(basis.InputPointIds[r]) = H.row(static_cast<Eigen::Index>(r));
+    mass[basis.InputPointIds[r]] = basis.LumpedMass[static_cast<Eigen::Index>(r)];
+  }
 }
 } // anonymous namespace
+
+//------------------------------------------------------------------------------
+struct vtkManifoldHarmonicBasis::Solution
+{
+  std::unique_ptr<spectral::BasisResult> Basis; // null: no cells, the input passes through
+  vtkManifoldHarmonicsParallel::Welding Welding;
+};
 
 //------------------------------------------------------------------------------
 vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
@@ -725,24 +741,20 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   const vtkManifoldHarmonicsParallel::MergedMesh merged =
     vtkManifoldHarmonicsParallel::GatherAndMerge(controller, piece, this->SeamTolerance);
 
-  // Process 0 solves on the merged surface.
+  // Process 0 solves on the merged surface (welded already by GatherAndMerge), in Eigen from
+  // the solve to the scatter.
   int status = 1;
   spectral::RowMatrix harmonics;
   spectral::Vector mass;
   spectral::Vector eigenvalues;
   if (controller->GetLocalProcessId() == 0)
   {
-    vtkNew<vtkPolyData> whole;
-    // The pieces are welded already (GatherAndMerge).
-    status = this->ComputeBasis(merged.Surface, whole, false);
-    vtkDataArray* h = whole->GetPointData()->GetArray(HarmonicsArrayName());
-    vtkDataArray* d = whole->GetPointData()->GetArray(MassArrayName());
-    vtkDataArray* lambda = whole->GetFieldData()->GetArray(EigenvaluesArrayName());
-    if (status && h && d && lambda)
+    Solution solution;
+    status = this->Solve(merged.Surface, false, solution);
+    if (status && solution.Basis)
     {
-      harmonics = vtkManifoldHarmonicsArrays::Signal(h).View();
-      mass = vtkManifoldHarmonicsArrays::Signal(d).View().col(0);
-      eigenvalues = vtkManifoldHarmonicsArrays::Signal(lambda).View().col(0);
+      ::FullRows(*solution.Basis, merged.Surface->GetNumberOfPoints(), harmonics, mass);
+      eigenvalues = solution.Basis->Pairs.Eigenvalues;
     }
   }
   vtkManifoldHarmonicsParallel::PieceBasis rows;
@@ -799,6 +811,24 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
 //------------------------------------------------------------------------------
 int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld)
 {
+  Solution solution;
+  if (!this->Solve(input, weld, solution))
+  {
+    return 0;
+  }
+  output->ShallowCopy(input);
+  if (solution.Basis)
+  {
+    this->SetProgressText("Write");
+    ::WriteBasis(output, input, *solution.Basis, solution.Welding, this->BasisPrecision == FLOAT);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& solution)
+{
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
                 << this->BandSize << ", tolerance " << this->Tolerance << ", max iterations "
@@ -816,7 +846,6 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
   {
     vtkWarningMacro(<< "No polygons or volume cells to compute manifold harmonics on; passing "
                        "the input through.");
-    output->ShallowCopy(input);
     return 1;
   }
   ::WarnAboutCells(this, cells);
@@ -827,7 +856,20 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
   }
   this->SolvedPoints = numPts;
   const spectral::Monitor monitor = this->MakeMonitor(0.95);
-  return this->Guard([&]() { ::SolveAndWrite(this, cells, input, output, weld, monitor); }) ? 1 : 0;
+  const spectral::BasisOptions options = ::CoreOptions(this);
+  return this->Guard(
+           [&]()
+           {
+             // The seam rule of every path: coincident points are one point (their copies get
+             // its rows).
+             spectral::TriangleMesh welded;
+             const bool merged =
+               weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
+             solution.Basis.reset(new spectral::BasisResult(
+               spectral::ComputeBasis(merged ? welded : cells.Mesh, options, monitor)));
+           })
+    ? 1
+    : 0;
 }
 
 //------------------------------------------------------------------------------

@@ -533,6 +533,15 @@ protected:
   double SeamTolerance;
 
 private:
+  /// The core's basis of a mesh and the welding of its points before the solve.
+  struct Solution;
+  /**
+   * Converts and checks the cells of `input`, welds them when `weld` is true and solves:
+   * 0 after an error (reported), 1 otherwise; `solution` holds a basis unless the input has no
+   * cells to solve on (warned).
+   */
+  int Solve(vtkPointSet* input, bool weld, Solution& solution);
+
   /// The points of the mesh being solved, for the message of InsufficientMemory.
   vtkIdType SolvedPoints = 0;
 
