@@ -203,10 +203,11 @@ void AddBasisArrays(vtkDataSet* output,
 }
 
 //------------------------------------------------------------------------------
-// The polygons and strips of the input as triangles, through an internal vtkTriangleFilter
-// when the input holds anything but triangles. Vertices and lines are passed on, for ToCoreMesh
-// to leave out with a warning; ghost cells are dropped (vtkManifoldHarmonicsGhosts: another
-// process owns them). The points are the input's.
+// The polygons and strips of a piece as triangles, for the gather of a distributed run
+// (GatherAndMerge takes triangles), through an internal vtkTriangleFilter when the piece holds
+// anything but triangles: it splits polygons by vtkPolygon::Triangulate, the rule of ToCoreMesh.
+// Vertices and lines are passed on, for ToCoreMesh to leave out with a warning; ghost cells are
+// dropped (vtkManifoldHarmonicsGhosts: another process owns them). The points are the piece's.
 vtkSmartPointer<vtkPolyData> Triangulate(vtkManifoldHarmonicBasis* self, vtkPolyData* input)
 {
   vtkSmartPointer<vtkPolyData> counted = vtkManifoldHarmonicsGhosts::CountedCells(input);
@@ -381,21 +382,6 @@ constexpr const char* KeptSeamsIgnored =
   "WeldSeams is off, but a distributed run merges the points that coincide within SeamTolerance "
   "(it cannot tell a seam inside a piece from one between pieces): keep seams open in a serial "
   "run.";
-
-//------------------------------------------------------------------------------
-// The cells of `input` in the core's form: polygons of a vtkPolyData through
-// vtkTriangleFilter (concave ones too), other point sets' cells through ToCoreMesh.
-vtkManifoldHarmonicsArrays::CoreMesh CoreCells(vtkManifoldHarmonicBasis* self, vtkPointSet* input)
-{
-  vtkPolyData* polygons = vtkPolyData::SafeDownCast(input);
-  vtkSmartPointer<vtkPointSet> triangulated = input;
-  if (polygons && input->GetNumberOfPoints() > 0 &&
-    polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() > 0)
-  {
-    triangulated = Triangulate(self, polygons);
-  }
-  return vtkManifoldHarmonicsArrays::ToCoreMesh(triangulated);
-}
 
 //------------------------------------------------------------------------------
 // What the conversion of the cells changed or left out, and how a point cloud is solved.
@@ -788,7 +774,7 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   }
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const vtkManifoldHarmonicsArrays::CoreMesh cells = ::CoreCells(this, input);
+  const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
   for (const std::string& warning : cells.Warnings())
   {
     vtkWarningMacro(<< warning);
@@ -835,7 +821,7 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
                 << this->MaxIterations << ", basis precision " << this->BasisPrecision
                 << ", memory limit " << this->MemoryLimit << " MiB");
   const vtkIdType numPts = input->GetNumberOfPoints();
-  const vtkManifoldHarmonicsArrays::CoreMesh cells = ::CoreCells(this, input);
+  const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
   const std::string problem = cells.Problem();
   if (!problem.empty())
   {

@@ -21,6 +21,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolygon.h"
 #include "vtkTable.h"
 
 #include "Spectral/Operators/Operators.h"
@@ -505,8 +506,16 @@ const Faces PyramidFaces = { { 0, 1, 2, 3 }, { 0, 1, 4 }, { 1, 2, 4 }, { 2, 3, 4
 /// The cells being collected.
 struct Collector
 {
+  explicit Collector(vtkPoints* points)
+    : Points(points)
+  {
+  }
+
+  vtkPoints* Points;
   std::vector<int> Triangles;
   std::vector<int> Tets;
+  vtkNew<vtkPolygon> Polygon;
+  vtkNew<vtkIdList> PolygonTriangles;
 
   void Triangle(vtkIdType a, vtkIdType b, vtkIdType c)
   {
@@ -578,10 +587,17 @@ struct Collector
     }
   }
 
-  /// The triangles of a 2-D cell (KindOfCell Surface): a fan from its first point.
+  /// The triangles of a 2-D cell (KindOfCell Surface): the one polygon rule, for every kind of
+  /// point set: a polygon or quadrilateral of more than 3 points by vtkPolygon::Triangulate (ear
+  /// cutting: concave polygons too; as vtkTriangleFilter does), a strip as consecutive triples,
+  /// a pixel along its diagonal from point 0 to point 3.
   void AddSurfaceCell(int type, vtkIdType npts, const vtkIdType* pts)
   {
-    if (type == VTK_PIXEL)
+    if ((type == VTK_POLYGON || type == VTK_QUAD) && npts > 3)
+    {
+      this->AddPolygon(npts, pts);
+    }
+    else if (type == VTK_PIXEL)
     {
       this->Triangle(pts[0], pts[1], pts[3]);
       this->Triangle(pts[0], pts[3], pts[2]);
@@ -593,12 +609,38 @@ struct Collector
         this->Triangle(pts[c], pts[c + 1], pts[c + 2]);
       }
     }
-    else
+    else if (npts == 3)
+    {
+      this->Triangle(pts[0], pts[1], pts[2]);
+    }
+  }
+
+  /// The triangles vtkPolygon::Triangulate makes of a polygon (none when it finds none). A
+  /// polygon naming a point that does not exist becomes a fan, for the core to refuse its ids.
+  void AddPolygon(vtkIdType npts, const vtkIdType* pts)
+  {
+    const vtkIdType numPoints = this->Points ? this->Points->GetNumberOfPoints() : 0;
+    if (std::any_of(
+          pts, pts + npts, [numPoints](vtkIdType id) { return id < 0 || id >= numPoints; }))
     {
       for (vtkIdType c = 1; c + 1 < npts; ++c)
       {
         this->Triangle(pts[0], pts[c], pts[c + 1]);
       }
+      return;
+    }
+    this->Polygon->PointIds->SetNumberOfIds(npts);
+    this->Polygon->Points->SetNumberOfPoints(npts);
+    for (vtkIdType i = 0; i < npts; ++i)
+    {
+      this->Polygon->PointIds->SetId(i, pts[i]);
+      this->Polygon->Points->SetPoint(i, this->Points->GetPoint(pts[i]));
+    }
+    this->Polygon->Triangulate(this->PolygonTriangles);
+    const vtkIdType* local = this->PolygonTriangles->GetPointer(0);
+    for (vtkIdType t = 0; t + 2 < this->PolygonTriangles->GetNumberOfIds(); t += 3)
+    {
+      this->Triangle(pts[local[t]], pts[local[t + 1]], pts[local[t + 2]]);
     }
   }
 
@@ -637,7 +679,7 @@ CoreMesh ToCoreMesh(vtkPointSet* input)
   {
     out.Mesh.Vertices = Signal(input->GetPoints()->GetData()).View();
   }
-  Collector cells;
+  Collector cells(input->GetPoints());
   vtkIdType size = 0;
   const vtkIdType* ids = nullptr;
   // Ghost cells (copies of other processes' cells) are left out: vtkManifoldHarmonicsGhosts.h.

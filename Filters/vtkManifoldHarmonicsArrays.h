@@ -137,8 +137,10 @@ std::string MissingBasisAdvice(vtkDataSet* input);
  * conversion did to them. Every point of the input is a point of the mesh; ghost cells are
  * left out (the rule of vtkManifoldHarmonicsGhosts.h).
  *
- * - 2-D cells: triangles as they are; quadrilaterals, pixels and polygons (as fans) and
- *   triangle strips split into triangles.
+ * - 2-D cells: triangles as they are; the module's one polygon rule for the rest, in every kind
+ *   of point set: quadrilaterals and polygons split by vtkPolygon::Triangulate (ear cutting,
+ *   concave ones too, as vtkTriangleFilter does), triangle strips into their triangles, pixels
+ *   along the diagonal from their point 0 to their point 3.
  * - 3-D cells: tetrahedra as they are; hexahedra, voxels, wedges and pyramids split into
  *   tetrahedra, conformingly: each cell is coned from its point of smallest id over the faces
  *   that do not hold it, and each quadrilateral face is split along the diagonal through its
