@@ -47,11 +47,12 @@ double HeronArea(double a, double b, double c)
   return p > 0.0 ? 0.25 * std::sqrt(p) : 0.0;
 }
 
-/// True if the triangle is too thin for its cotangents to mean anything.
+/// True if the triangle is too thin for its cotangents to mean anything: the rule of the
+/// extrinsic mesh (DegenerateCellSize, Operators.h) on the intrinsic lengths.
 bool IsDegenerate(double a, double b, double c, double area)
 {
   const double longest = std::max({ a, b, c });
-  return !(2.0 * area > 1e-12 * longest * longest);
+  return !(2.0 * area > DegenerateCellSize * longest * longest);
 }
 
 /// Cotangent of the angle opposite side a; 0 for a degenerate triangle.
