@@ -19,8 +19,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <functional>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace ManifoldHarmonicsTest
 {
@@ -32,6 +36,49 @@ inline bool Check(bool condition, const std::string& what)
     std::cerr << "ERROR: " << what << std::endl;
   }
   return condition;
+}
+
+/// One named case of a test file: one property, whose checks its function runs.
+struct Case
+{
+  std::string Name;
+  std::function<bool()> Run;
+};
+
+/**
+ * Run the case named by argv[1], or every case when there is no name (argv[0] is the test's
+ * name, as the VTK test driver passes it; a flag such as -T is not a name). CTest runs one case
+ * per test (Filters/Testing/Cxx/CMakeLists.txt). Returns EXIT_FAILURE if a case failed or threw,
+ * or the name is unknown.
+ */
+inline int RunCases(int argc, char* argv[], const std::vector<Case>& cases)
+{
+  const bool one = argc > 1 && argv[1][0] != '-';
+  bool found = false;
+  bool ok = true;
+  for (const Case& c : cases)
+  {
+    if (one && c.Name != argv[1])
+    {
+      continue;
+    }
+    found = true;
+    std::cout << c.Name << std::endl;
+    try
+    {
+      ok &= c.Run();
+    }
+    catch (const std::exception& e)
+    {
+      ok = Check(false, c.Name + ": unexpected exception: " + e.what());
+    }
+  }
+  if (one && !found)
+  {
+    Check(false, std::string("unknown test case '") + argv[1] + "'");
+    return EXIT_FAILURE;
+  }
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
 /// max |a - b| / max |b| over all values; 1 if an array is missing or the shapes differ.

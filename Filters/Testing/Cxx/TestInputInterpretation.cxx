@@ -170,11 +170,13 @@ bool TestNonManifoldEdges()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestInputInterpretation(int, char*[])
+int TestInputInterpretation(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestPointsWithoutCells();
-  ok &= TestVerticesAndLinesLeftOut();
-  ok &= TestNonManifoldEdges();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "PointsWithoutCells", TestPointsWithoutCells },
+      { "VerticesAndLinesLeftOut", TestVerticesAndLinesLeftOut },
+      { "NonManifoldEdges", TestNonManifoldEdges },
+    });
 }

@@ -614,19 +614,21 @@ bool TestMemoryGuard()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicBasis(int, char*[])
+int TestManifoldHarmonicBasis(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestArraysAndSphereSpectrum();
-  ok &= TestFloatAndDoublePoints();
-  ok &= TestConsistentMass();
-  ok &= TestAbort();
-  ok &= TestQuads();
-  ok &= TestUnusedPoints();
-  ok &= TestClampAndEmpty();
-  ok &= TestMinimumComponentSize();
-  ok &= TestSpectrumOptions();
-  ok &= TestBasisPrecision();
-  ok &= TestMemoryGuard();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "ArraysAndSphereSpectrum", TestArraysAndSphereSpectrum },
+      { "FloatAndDoublePoints", TestFloatAndDoublePoints },
+      { "ConsistentMass", TestConsistentMass },
+      { "Abort", TestAbort },
+      { "Quads", TestQuads },
+      { "UnusedPoints", TestUnusedPoints },
+      { "ClampAndEmpty", TestClampAndEmpty },
+      { "MinimumComponentSize", TestMinimumComponentSize },
+      { "SpectrumOptions", TestSpectrumOptions },
+      { "BasisPrecision", TestBasisPrecision },
+      { "MemoryGuard", TestMemoryGuard },
+    });
 }

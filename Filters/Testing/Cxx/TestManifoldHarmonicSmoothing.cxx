@@ -399,14 +399,16 @@ bool TestNoPolygons()
 }
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicSmoothing(int, char*[])
+int TestManifoldHarmonicSmoothing(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkPolyData> input = NoisySphere();
-  bool ok = TestSameAsThreeStages(input);
-  ok &= TestFloatBasis(input);
-  ok &= TestSpectrumTable(input);
-  ok &= TestReuseProgressAbort(input);
-  ok &= TestOnlyConstantHarmonics(input);
-  ok &= TestNoPolygons();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "SameAsThreeStages", [] { return TestSameAsThreeStages(NoisySphere()); } },
+      { "FloatBasis", [] { return TestFloatBasis(NoisySphere()); } },
+      { "SpectrumTable", [] { return TestSpectrumTable(NoisySphere()); } },
+      { "ReuseProgressAbort", [] { return TestReuseProgressAbort(NoisySphere()); } },
+      { "OnlyConstantHarmonics", [] { return TestOnlyConstantHarmonics(NoisySphere()); } },
+      { "NoPolygons", TestNoPolygons },
+    });
 }

@@ -351,13 +351,15 @@ bool TestAbort()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicTransform(int, char*[])
+int TestManifoldHarmonicTransform(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestNamesAndShapes();
-  ok &= TestDefinitionAndPrecision();
-  ok &= TestSelectionModifies();
-  ok &= TestErrors();
-  ok &= TestAbort();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "NamesAndShapes", TestNamesAndShapes },
+      { "DefinitionAndPrecision", TestDefinitionAndPrecision },
+      { "SelectionModifies", TestSelectionModifies },
+      { "Errors", TestErrors },
+      { "Abort", TestAbort },
+    });
 }

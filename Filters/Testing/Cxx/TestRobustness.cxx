@@ -1007,12 +1007,16 @@ bool TestAbortFromAnotherThread(int laplacian)
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestRobustness(int, char*[])
+int TestRobustness(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestCorpus();
-  ok &= TestDownstream();
-  ok &= TestAbortFromAnotherThread(vtkManifoldHarmonicBasis::COTANGENT);
-  ok &= TestAbortFromAnotherThread(vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY);
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Corpus", TestCorpus },
+      { "Downstream", TestDownstream },
+      { "AbortFromAnotherThreadCotangent",
+        [] { return TestAbortFromAnotherThread(vtkManifoldHarmonicBasis::COTANGENT); } },
+      { "AbortFromAnotherThreadIntrinsicDelaunay",
+        [] { return TestAbortFromAnotherThread(vtkManifoldHarmonicBasis::INTRINSIC_DELAUNAY); } },
+    });
 }

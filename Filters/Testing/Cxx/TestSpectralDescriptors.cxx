@@ -427,17 +427,19 @@ bool TestAbort()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestSpectralDescriptors(int, char*[])
+int TestSpectralDescriptors(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestSphere();
-  ok &= TestRigidMotion();
-  ok &= TestDistances();
-  ok &= TestShapeDNA();
-  ok &= TestShapeDNAFromEigenvaluesOnly();
-  ok &= TestFloatBasis();
-  ok &= TestErrors();
-  ok &= TestWarnings();
-  ok &= TestAbort();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Sphere", TestSphere },
+      { "RigidMotion", TestRigidMotion },
+      { "Distances", TestDistances },
+      { "ShapeDNA", TestShapeDNA },
+      { "ShapeDNAFromEigenvaluesOnly", TestShapeDNAFromEigenvaluesOnly },
+      { "FloatBasis", TestFloatBasis },
+      { "Errors", TestErrors },
+      { "Warnings", TestWarnings },
+      { "Abort", TestAbort },
+    });
 }

@@ -1376,29 +1376,31 @@ bool TestCutoffsOutsideTheSpectrum()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestSpectralFilter(int, char*[])
+int TestSpectralFilter(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestIdentity();
-  ok &= TestCompleteBasis();
-  ok &= TestFloatBasis();
-  ok &= TestLinearity();
-  ok &= TestNoisySphere();
-  ok &= TestColorsAndNormals();
-  ok &= TestHeatDiffusion();
-  ok &= TestChaining();
-  ok &= TestUnrepresentedComponent();
-  ok &= TestUnusedPoint();
-  ok &= TestNyquistFollowsInput();
-  ok &= TestNyquistSameMTime();
-  ok &= TestNumberOfThreads();
-  ok &= TestAbort();
-  ok &= TestInteractive();
-  ok &= TestMissingInputs();
-  ok &= TestSliderRanges();
-  ok &= TestDefaultCutoffAtAnyScale();
-  ok &= TestCutoffUnits();
-  ok &= TestNegativeCutoffs();
-  ok &= TestCutoffsOutsideTheSpectrum();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Identity", TestIdentity },
+      { "CompleteBasis", TestCompleteBasis },
+      { "FloatBasis", TestFloatBasis },
+      { "Linearity", TestLinearity },
+      { "NoisySphere", TestNoisySphere },
+      { "ColorsAndNormals", TestColorsAndNormals },
+      { "HeatDiffusion", TestHeatDiffusion },
+      { "Chaining", TestChaining },
+      { "UnrepresentedComponent", TestUnrepresentedComponent },
+      { "UnusedPoint", TestUnusedPoint },
+      { "NyquistFollowsInput", TestNyquistFollowsInput },
+      { "NyquistSameMTime", TestNyquistSameMTime },
+      { "NumberOfThreads", TestNumberOfThreads },
+      { "Abort", TestAbort },
+      { "Interactive", TestInteractive },
+      { "MissingInputs", TestMissingInputs },
+      { "SliderRanges", TestSliderRanges },
+      { "DefaultCutoffAtAnyScale", TestDefaultCutoffAtAnyScale },
+      { "CutoffUnits", TestCutoffUnits },
+      { "NegativeCutoffs", TestNegativeCutoffs },
+      { "CutoffsOutsideTheSpectrum", TestCutoffsOutsideTheSpectrum },
+    });
 }

@@ -580,12 +580,15 @@ bool TestSmoothing()
 }
 } // anonymous namespace
 
-int TestVolumeHarmonics(int, char*[])
+int TestVolumeHarmonics(int argc, char* argv[])
 {
-  bool ok = TestTetrahedra();
-  ok &= TestSplitCells();
-  ok &= TestErrors();
-  ok &= TestPointClouds();
-  ok &= TestSmoothing();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Tetrahedra", TestTetrahedra },
+      { "SplitCells", TestSplitCells },
+      { "Errors", TestErrors },
+      { "PointClouds", TestPointClouds },
+      { "Smoothing", TestSmoothing },
+    });
 }
