@@ -9,11 +9,14 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
 
 #include "Perturbation.h" // Testing/Core: the rounding-level perturbation of generated meshes
 
@@ -80,6 +83,52 @@ inline int RunCases(int argc, char* argv[], const std::vector<Case>& cases)
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+
+/**
+ * The errors and warnings of the algorithms observed, caught instead of printed (a printed
+ * "ERROR:" fails the test), and the errors of their executives ("Algorithm ... returned
+ * failure"), caught apart. `messages->GetError()` and the like read what the algorithms said.
+ * The observers go with the object: an algorithm that outlives it prints again.
+ */
+class Messages
+{
+public:
+  Messages() = default;
+  explicit Messages(vtkAlgorithm* algorithm) { this->Observe(algorithm); }
+  Messages(const Messages&) = delete;
+  Messages& operator=(const Messages&) = delete;
+  ~Messages()
+  {
+    for (const Observation& observation : this->Observations)
+    {
+      observation.Subject->RemoveObserver(observation.Tag);
+    }
+  }
+
+  void Observe(vtkAlgorithm* algorithm)
+  {
+    this->Add(algorithm, vtkCommand::ErrorEvent, this->Caught);
+    this->Add(algorithm, vtkCommand::WarningEvent, this->Caught);
+    this->Add(algorithm->GetExecutive(), vtkCommand::ErrorEvent, this->Executive);
+  }
+
+  vtkTest::ErrorObserver* operator->() const { return this->Caught; }
+
+  vtkNew<vtkTest::ErrorObserver> Caught;
+  vtkNew<vtkTest::ErrorObserver> Executive;
+
+private:
+  struct Observation
+  {
+    vtkSmartPointer<vtkObject> Subject;
+    unsigned long Tag;
+  };
+  void Add(vtkObject* subject, unsigned long event, vtkCommand* observer)
+  {
+    this->Observations.push_back({ subject, subject->AddObserver(event, observer) });
+  }
+  std::vector<Observation> Observations;
+};
 
 /// max |a - b| / max |b| over all values; 1 if an array is missing or the shapes differ.
 inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)

@@ -59,7 +59,7 @@ struct Downstream
 {
   vtkNew<vtkManifoldHarmonicTransform> Transform;
   vtkNew<vtkSpectralFilter> Filter;
-  vtkNew<vtkTest::ErrorObserver> Errors;
+  ManifoldHarmonicsTest::Messages Errors;
 
   explicit Downstream(vtkAlgorithmOutput* basis)
   {
@@ -70,8 +70,8 @@ struct Downstream
     this->Filter->SetCutoffUnitsToAbsoluteFrequency();
     this->Filter->SetCutoff(3.0);
     this->Filter->SetUpperCutoff(5.0);
-    this->Transform->AddObserver(vtkCommand::ErrorEvent, this->Errors);
-    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    this->Errors.Observe(this->Transform);
+    this->Errors.Observe(this->Filter);
     this->Filter->Update();
   }
   vtkDataArray* Coefficients(const char* name)

@@ -32,13 +32,9 @@ using ManifoldHarmonicsTest::Check;
 // The warnings of one execution of `algorithm` on `input`; false if it failed.
 bool Warnings(vtkAlgorithm* algorithm, vtkDataObject* input, std::string& warnings)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
-  algorithm->AddObserver(vtkCommand::WarningEvent, messages);
-  algorithm->AddObserver(vtkCommand::ErrorEvent, messages);
+  const ManifoldHarmonicsTest::Messages messages(algorithm);
   algorithm->SetInputDataObject(input);
   algorithm->Update();
-  algorithm->RemoveObservers(vtkCommand::WarningEvent);
-  algorithm->RemoveObservers(vtkCommand::ErrorEvent);
   warnings = messages->GetWarningMessage();
   std::cout << algorithm->GetClassName() << " warnings: " << warnings << std::endl;
   return !messages->GetError();

@@ -346,9 +346,7 @@ bool TestOnlyConstantHarmonics(vtkPolyData* input)
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
   smoothing->SetInputData(input);
   smoothing->SetNumberOfHarmonics(1);
-  vtkNew<vtkTest::ErrorObserver> errors;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, errors);
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  const ManifoldHarmonicsTest::Messages errors(smoothing);
   smoothing->Update();
   const std::string message = errors->GetErrorMessage();
   bool ok = Check(errors->GetError() && message.find("all constant") != std::string::npos &&
@@ -383,10 +381,7 @@ bool TestNoPolygons()
   polyline->SetLines(lines);
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
   smoothing->SetInputData(polyline);
-  vtkNew<vtkTest::ErrorObserver> messages;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
-  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, messages);
+  const ManifoldHarmonicsTest::Messages messages(smoothing);
   smoothing->Update();
   vtkPolyData* output = smoothing->GetPolyDataOutput();
   std::cout << "No polygons: " << output->GetNumberOfPoints() << " points, "

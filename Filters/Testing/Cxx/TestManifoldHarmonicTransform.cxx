@@ -249,11 +249,8 @@ bool TestSelectionModifies()
 // Runs the transform on `input` and expects an error mentioning each of `words`.
 bool ExpectError(vtkPointSet* input, const std::string& words1, const std::string& words2)
 {
-  vtkNew<vtkTest::ErrorObserver> filterErrors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
   vtkNew<vtkManifoldHarmonicTransform> transform;
-  transform->AddObserver(vtkCommand::ErrorEvent, filterErrors);
-  transform->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages filterErrors(transform);
   transform->SetInputData(input);
   transform->Update();
   const std::string message = filterErrors->GetErrorMessage();

@@ -327,12 +327,8 @@ std::string JudgeBasis(vtkPolyData* output, int m, std::vector<double>& lambda)
 //------------------------------------------------------------------------------
 Outcome RunBasis(vtkPolyData* input, int m, int laplacian, int expectedM = -1)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
-  vtkNew<vtkTest::ErrorObserver> executive;
   vtkNew<vtkManifoldHarmonicBasis> basis;
-  basis->AddObserver(vtkCommand::ErrorEvent, messages);
-  basis->AddObserver(vtkCommand::WarningEvent, messages);
-  basis->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+  const ManifoldHarmonicsTest::Messages messages(basis);
   basis->SetNumberOfHarmonics(m);
   basis->SetLaplacian(laplacian);
   basis->SetInputData(input);
@@ -830,11 +826,7 @@ bool ExpectError(vtkPointSetAlgorithm* algorithm,
   const std::string& words,
   const std::string& what)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
-  vtkNew<vtkTest::ErrorObserver> executive;
-  algorithm->AddObserver(vtkCommand::ErrorEvent, messages);
-  algorithm->AddObserver(vtkCommand::WarningEvent, messages);
-  algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+  const ManifoldHarmonicsTest::Messages messages(algorithm);
   algorithm->SetInputData(input);
   algorithm->Update();
   std::cout << what << ":" << AfterLocation(messages->GetErrorMessage()) << "\n";
@@ -912,9 +904,8 @@ bool TestDownstream()
     filter->SetCutoffUnitsToAbsoluteFrequency();
     filter->SetCutoff(1e9);
     filter->ReplaceInputOff();
-    vtkNew<vtkTest::ErrorObserver> messages;
-    filter->AddObserver(vtkCommand::ErrorEvent, messages);
-    transform->AddObserver(vtkCommand::ErrorEvent, messages);
+    ManifoldHarmonicsTest::Messages messages(filter);
+    messages.Observe(transform);
     filter->Update();
     vtkDataArray* labels = filter->GetOutput()->GetPointData()->GetArray("Labels_Filtered");
     vtkDataArray* filteredShorts = filter->GetOutput()->GetPointData()->GetArray("Shorts_Filtered");

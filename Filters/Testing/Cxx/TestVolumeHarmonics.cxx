@@ -385,10 +385,7 @@ bool TestErrors()
   const auto expectError = [](vtkDataObject* input, const std::string& text)
   {
     vtkNew<vtkManifoldHarmonicBasis> basis;
-    vtkNew<vtkTest::ErrorObserver> errors;
-    vtkNew<vtkTest::ErrorObserver> executive;
-    basis->AddObserver(vtkCommand::ErrorEvent, errors);
-    basis->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+    const ManifoldHarmonicsTest::Messages errors(basis);
     basis->SetInputData(input);
     basis->Update();
     // The message without its "ERROR: In file, line" prefix (which would fail the test).

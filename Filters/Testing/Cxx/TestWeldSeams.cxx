@@ -448,12 +448,8 @@ bool TestKeepSeamsOpen(vtkPolyData* soup)
 // constant harmonics, an error.
 bool TestSmoothingSwitch(vtkPolyData* soup)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
-  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
-  vtkNew<vtkTest::ErrorObserver> executive;
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+  const ManifoldHarmonicsTest::Messages messages(smoothing);
   smoothing->SetNumberOfHarmonics(Harmonics);
   smoothing->WeldSeamsOff();
   smoothing->SetInputData(soup);
