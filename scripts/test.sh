@@ -5,8 +5,9 @@
 #      its Python wrapping, the C++ test driver and the examples must build against plain VTK; its
 #      tests run but the C++ filter cases (label FiltersCxx: the same code on the same VTK
 #      libraries as in stage 1, which runs them); the Python test and the examples run in the
-#      plain Python interpreter instead of pvpython. The VTK-free core's tests and the benchmark
-#      program are left out (stages 1 and 3 have them);
+#      plain Python interpreter instead of pvpython. The VTK-free core is not compiled again: the
+#      module links stage 1's core library (MANIFOLDHARMONICS_SPECTRAL_CORE_FROM); the core's
+#      tests and the benchmark program are left out (stages 1 and 3 have them);
 #   3. the spectral core alone (Testing/Core, no VTK) with AddressSanitizer and
 #      UndefinedBehaviorSanitizer in ${BUILD_DIR}/sanitize, for the x86-64 baseline (stage 1 builds
 #      it for this machine's CPU), its tests but the slow ones, then the libFuzzer target
@@ -72,6 +73,7 @@ cmake -S "${source_dir}" -B "${build_dir}/vtk-only" \
   -DMANIFOLDHARMONICS_USE_PARAVIEW=OFF \
   -DMANIFOLDHARMONICS_CORE_TESTS=OFF \
   -DMANIFOLDHARMONICS_BUILD_BENCH=OFF \
+  -DMANIFOLDHARMONICS_SPECTRAL_CORE_FROM="${build_dir}/Filters/Spectral" \
   -DVTK_DIR="${cmake_dir}/vtk"
 cmake --build "${build_dir}/vtk-only" -j "${jobs}"
 mapfile -t stage_labels < <(exclude FiltersCxx)
