@@ -52,10 +52,19 @@ struct Case
  * Run the case named by argv[1], or every case when there is no name (argv[0] is the test's
  * name, as the VTK test driver passes it; a flag such as -T is not a name). CTest runs one case
  * per test (Filters/Testing/Cxx/CMakeLists.txt). Returns EXIT_FAILURE if a case failed or threw,
- * or the name is unknown.
+ * or the name is unknown. With --cases, prints "case <Name>" for each case and runs none
+ * (CheckCases.cmake compares them with the cases CTest registers).
  */
 inline int RunCases(int argc, char* argv[], const std::vector<Case>& cases)
 {
+  if (argc > 1 && std::string(argv[1]) == "--cases")
+  {
+    for (const Case& c : cases)
+    {
+      std::cout << "case " << c.Name << std::endl;
+    }
+    return EXIT_SUCCESS;
+  }
   const bool one = argc > 1 && argv[1][0] != '-';
   bool found = false;
   bool ok = true;
