@@ -1,6 +1,6 @@
-# The one list of the spectral core's files, relative to this folder. Included by the VTK module
-# (Filters/CMakeLists.txt), by the core's own build without VTK (Testing/Core/CMakeLists.txt) and,
-# through the core library of that build, by the benchmark (bench/).
+# The one list of the spectral core's files, relative to this folder, compiled once into the
+# library ManifoldHarmonicsSpectralCore by CMakeLists.txt beside it (used by the VTK module, the
+# core's tests in Testing/Core and the benchmark in bench/).
 #
 #   Basis.h      the one entry point: mesh + options + monitor -> verified basis
 #   Common/      types, defaults, progress and cancellation, threads: what every part uses

@@ -9,18 +9,25 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkTestErrorObserver.h"
 
 #include "Perturbation.h" // Testing/Core: the rounding-level perturbation of generated meshes
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <functional>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace ManifoldHarmonicsTest
 {
@@ -33,6 +40,104 @@ inline bool Check(bool condition, const std::string& what)
   }
   return condition;
 }
+
+/// One named case of a test file: one property, whose checks its function runs.
+struct Case
+{
+  std::string Name;
+  std::function<bool()> Run;
+};
+
+/**
+ * Run the case named by argv[1], or every case when there is no name (argv[0] is the test's
+ * name, as the VTK test driver passes it; a flag such as -T is not a name). CTest runs one case
+ * per test (Filters/Testing/Cxx/CMakeLists.txt). Returns EXIT_FAILURE if a case failed or threw,
+ * or the name is unknown. With --cases, prints "case <Name>" for each case and runs none
+ * (CheckCases.cmake compares them with the cases CTest registers).
+ */
+inline int RunCases(int argc, char* argv[], const std::vector<Case>& cases)
+{
+  if (argc > 1 && std::string(argv[1]) == "--cases")
+  {
+    for (const Case& c : cases)
+    {
+      std::cout << "case " << c.Name << std::endl;
+    }
+    return EXIT_SUCCESS;
+  }
+  const bool one = argc > 1 && argv[1][0] != '-';
+  bool found = false;
+  bool ok = true;
+  for (const Case& c : cases)
+  {
+    if (one && c.Name != argv[1])
+    {
+      continue;
+    }
+    found = true;
+    std::cout << c.Name << std::endl;
+    try
+    {
+      ok &= c.Run();
+    }
+    catch (const std::exception& e)
+    {
+      ok = Check(false, c.Name + ": unexpected exception: " + e.what());
+    }
+  }
+  if (one && !found)
+  {
+    Check(false, std::string("unknown test case '") + argv[1] + "'");
+    return EXIT_FAILURE;
+  }
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+/**
+ * The errors and warnings of the algorithms observed, caught instead of printed (a printed
+ * "ERROR:" fails the test), and the errors of their executives ("Algorithm ... returned
+ * failure"), caught apart. `messages->GetError()` and the like read what the algorithms said.
+ * The observers go with the object: an algorithm that outlives it prints again.
+ */
+class Messages
+{
+public:
+  Messages() = default;
+  explicit Messages(vtkAlgorithm* algorithm) { this->Observe(algorithm); }
+  Messages(const Messages&) = delete;
+  Messages& operator=(const Messages&) = delete;
+  ~Messages()
+  {
+    for (const Observation& observation : this->Observations)
+    {
+      observation.Subject->RemoveObserver(observation.Tag);
+    }
+  }
+
+  void Observe(vtkAlgorithm* algorithm)
+  {
+    this->Add(algorithm, vtkCommand::ErrorEvent, this->Caught);
+    this->Add(algorithm, vtkCommand::WarningEvent, this->Caught);
+    this->Add(algorithm->GetExecutive(), vtkCommand::ErrorEvent, this->Executive);
+  }
+
+  vtkTest::ErrorObserver* operator->() const { return this->Caught; }
+
+  vtkNew<vtkTest::ErrorObserver> Caught;
+  vtkNew<vtkTest::ErrorObserver> Executive;
+
+private:
+  struct Observation
+  {
+    vtkSmartPointer<vtkObject> Subject;
+    unsigned long Tag;
+  };
+  void Add(vtkObject* subject, unsigned long event, vtkCommand* observer)
+  {
+    this->Observations.push_back({ subject, subject->AddObserver(event, observer) });
+  }
+  std::vector<Observation> Observations;
+};
 
 /// max |a - b| / max |b| over all values; 1 if an array is missing or the shapes differ.
 inline double RelativeDifference(vtkDataArray* a, vtkDataArray* b)

@@ -59,7 +59,7 @@ struct Downstream
 {
   vtkNew<vtkManifoldHarmonicTransform> Transform;
   vtkNew<vtkSpectralFilter> Filter;
-  vtkNew<vtkTest::ErrorObserver> Errors;
+  ManifoldHarmonicsTest::Messages Errors;
 
   explicit Downstream(vtkAlgorithmOutput* basis)
   {
@@ -70,8 +70,8 @@ struct Downstream
     this->Filter->SetCutoffUnitsToAbsoluteFrequency();
     this->Filter->SetCutoff(3.0);
     this->Filter->SetUpperCutoff(5.0);
-    this->Transform->AddObserver(vtkCommand::ErrorEvent, this->Errors);
-    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    this->Errors.Observe(this->Transform);
+    this->Errors.Observe(this->Filter);
     this->Filter->Update();
   }
   vtkDataArray* Coefficients(const char* name)
@@ -151,12 +151,18 @@ int TestBasisReuse(int argc, char* argv[])
   const std::string directory = temporary;
   delete[] temporary;
 
-  vtkNew<vtkManifoldHarmonicBasis> basis;
-  basis->SetInputData(MakeSphere());
-  basis->SetNumberOfHarmonics(40);
-  Downstream reference(basis->GetOutputPort());
-
-  bool ok = TestRoundTrip(vtkManifoldHarmonicBasis::DOUBLE, directory, reference);
-  ok &= TestRoundTrip(vtkManifoldHarmonicBasis::FLOAT, directory, reference);
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  // The pipeline on the basis in memory, which the pipeline on the file must reproduce.
+  auto roundTrip = [directory](int precision) {
+    vtkNew<vtkManifoldHarmonicBasis> basis;
+    basis->SetInputData(MakeSphere());
+    basis->SetNumberOfHarmonics(40);
+    Downstream reference(basis->GetOutputPort());
+    return TestRoundTrip(precision, directory, reference);
+  };
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "DoubleBasisRoundTrip", [&] { return roundTrip(vtkManifoldHarmonicBasis::DOUBLE); } },
+      { "FloatBasisRoundTrip", [&] { return roundTrip(vtkManifoldHarmonicBasis::FLOAT); } },
+    });
 }

@@ -6,7 +6,6 @@
 // - the output has the input's type, the table port a vtkTable;
 // - NumberOfThreads is every filter's, 0 by default; PrintSelf prints the values (enumerated
 //   ones by their names).
-// Run with a case name as argument to run that case alone.
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
@@ -28,7 +27,6 @@
 
 #include "ManifoldHarmonicsTestUtilities.h"
 
-#include <cstring>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -231,33 +229,17 @@ bool SharedSettingsAndPrintSelf()
   return ok;
 }
 
-struct Case
-{
-  const char* Name;
-  std::function<bool()> Run;
-};
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 int TestFilterContract(int argc, char* argv[])
 {
-  const Case cases[] = {
-    { "ErrorsEmptyEveryPort", ErrorsEmptyEveryPort },
-    { "AbortsEmptyEveryPort", AbortsEmptyEveryPort },
-    { "OutputLikeInput", OutputLikeInput },
-    { "SharedSettingsAndPrintSelf", SharedSettingsAndPrintSelf },
-  };
-  const char* only = argc > 1 && argv[argc - 1][0] != '-' ? argv[argc - 1] : nullptr;
-  bool ok = true;
-  bool found = only == nullptr;
-  for (const Case& c : cases)
-  {
-    if (!only || std::strcmp(only, c.Name) == 0)
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
     {
-      found = true;
-      std::cout << c.Name << std::endl;
-      ok &= c.Run();
-    }
-  }
-  return ok && found ? EXIT_SUCCESS : EXIT_FAILURE;
+      { "ErrorsEmptyEveryPort", ErrorsEmptyEveryPort },
+      { "AbortsEmptyEveryPort", AbortsEmptyEveryPort },
+      { "OutputLikeInput", OutputLikeInput },
+      { "SharedSettingsAndPrintSelf", SharedSettingsAndPrintSelf },
+    });
 }

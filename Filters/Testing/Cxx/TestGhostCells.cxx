@@ -247,10 +247,12 @@ bool TestDuplicatePointsCountedOnce(vtkPolyData* sphere)
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestGhostCells(int, char*[])
+int TestGhostCells(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkPolyData> sphere = MakeSphere();
-  bool ok = TestGhostCellsLeftOut(sphere);
-  ok &= TestDuplicatePointsCountedOnce(sphere);
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "GhostCellsLeftOut", [] { return TestGhostCellsLeftOut(MakeSphere()); } },
+      { "DuplicatePointsCountedOnce", [] { return TestDuplicatePointsCountedOnce(MakeSphere()); } },
+    });
 }

@@ -32,13 +32,9 @@ using ManifoldHarmonicsTest::Check;
 // The warnings of one execution of `algorithm` on `input`; false if it failed.
 bool Warnings(vtkAlgorithm* algorithm, vtkDataObject* input, std::string& warnings)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
-  algorithm->AddObserver(vtkCommand::WarningEvent, messages);
-  algorithm->AddObserver(vtkCommand::ErrorEvent, messages);
+  const ManifoldHarmonicsTest::Messages messages(algorithm);
   algorithm->SetInputDataObject(input);
   algorithm->Update();
-  algorithm->RemoveObservers(vtkCommand::WarningEvent);
-  algorithm->RemoveObservers(vtkCommand::ErrorEvent);
   warnings = messages->GetWarningMessage();
   std::cout << algorithm->GetClassName() << " warnings: " << warnings << std::endl;
   return !messages->GetError();
@@ -170,11 +166,13 @@ bool TestNonManifoldEdges()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestInputInterpretation(int, char*[])
+int TestInputInterpretation(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestPointsWithoutCells();
-  ok &= TestVerticesAndLinesLeftOut();
-  ok &= TestNonManifoldEdges();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "PointsWithoutCells", TestPointsWithoutCells },
+      { "VerticesAndLinesLeftOut", TestVerticesAndLinesLeftOut },
+      { "NonManifoldEdges", TestNonManifoldEdges },
+    });
 }

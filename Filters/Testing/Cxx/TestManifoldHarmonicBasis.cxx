@@ -456,10 +456,7 @@ bool TestSpectrumOptions()
       Check(std::abs(inside->GetValue(k) - all->GetValue(4 + k)) <= 1e-12 * all->GetValue(4 + k),
         "FrequencyWindow: pair " + std::to_string(k) + " is pair " + std::to_string(4 + k));
   }
-  vtkNew<vtkTest::ErrorObserver> errors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
-  window->AddObserver(vtkCommand::ErrorEvent, errors);
-  window->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages errors(window);
   window->SetFrequencyWindow(2.5, 2.6);
   window->Update();
   ok &= Check(errors->GetError() && window->GetOutput()->GetNumberOfPoints() == 0 &&
@@ -568,9 +565,7 @@ bool TestMemoryGuard()
     basis->SetBasisPrecision(precision);
     basis->SetMemoryLimit(0.01); // 10 KiB
     basis->SetInputData(sphere);
-    vtkNew<vtkTest::ErrorObserver> errors;
-    basis->AddObserver(vtkCommand::ErrorEvent, errors);
-    basis->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    const ManifoldHarmonicsTest::Messages errors(basis);
     basis->Update();
     const std::string message = errors->GetErrorMessage();
     // The text only: the output of a test must not contain the word that marks VTK errors.
@@ -614,19 +609,21 @@ bool TestMemoryGuard()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicBasis(int, char*[])
+int TestManifoldHarmonicBasis(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestArraysAndSphereSpectrum();
-  ok &= TestFloatAndDoublePoints();
-  ok &= TestConsistentMass();
-  ok &= TestAbort();
-  ok &= TestQuads();
-  ok &= TestUnusedPoints();
-  ok &= TestClampAndEmpty();
-  ok &= TestMinimumComponentSize();
-  ok &= TestSpectrumOptions();
-  ok &= TestBasisPrecision();
-  ok &= TestMemoryGuard();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "ArraysAndSphereSpectrum", TestArraysAndSphereSpectrum },
+      { "FloatAndDoublePoints", TestFloatAndDoublePoints },
+      { "ConsistentMass", TestConsistentMass },
+      { "Abort", TestAbort },
+      { "Quads", TestQuads },
+      { "UnusedPoints", TestUnusedPoints },
+      { "ClampAndEmpty", TestClampAndEmpty },
+      { "MinimumComponentSize", TestMinimumComponentSize },
+      { "SpectrumOptions", TestSpectrumOptions },
+      { "BasisPrecision", TestBasisPrecision },
+      { "MemoryGuard", TestMemoryGuard },
+    });
 }

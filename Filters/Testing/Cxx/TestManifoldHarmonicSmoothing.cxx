@@ -346,9 +346,7 @@ bool TestOnlyConstantHarmonics(vtkPolyData* input)
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
   smoothing->SetInputData(input);
   smoothing->SetNumberOfHarmonics(1);
-  vtkNew<vtkTest::ErrorObserver> errors;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, errors);
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  const ManifoldHarmonicsTest::Messages errors(smoothing);
   smoothing->Update();
   const std::string message = errors->GetErrorMessage();
   bool ok = Check(errors->GetError() && message.find("all constant") != std::string::npos &&
@@ -383,10 +381,7 @@ bool TestNoPolygons()
   polyline->SetLines(lines);
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
   smoothing->SetInputData(polyline);
-  vtkNew<vtkTest::ErrorObserver> messages;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
-  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, messages);
+  const ManifoldHarmonicsTest::Messages messages(smoothing);
   smoothing->Update();
   vtkPolyData* output = smoothing->GetPolyDataOutput();
   std::cout << "No polygons: " << output->GetNumberOfPoints() << " points, "
@@ -399,14 +394,16 @@ bool TestNoPolygons()
 }
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicSmoothing(int, char*[])
+int TestManifoldHarmonicSmoothing(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkPolyData> input = NoisySphere();
-  bool ok = TestSameAsThreeStages(input);
-  ok &= TestFloatBasis(input);
-  ok &= TestSpectrumTable(input);
-  ok &= TestReuseProgressAbort(input);
-  ok &= TestOnlyConstantHarmonics(input);
-  ok &= TestNoPolygons();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "SameAsThreeStages", [] { return TestSameAsThreeStages(NoisySphere()); } },
+      { "FloatBasis", [] { return TestFloatBasis(NoisySphere()); } },
+      { "SpectrumTable", [] { return TestSpectrumTable(NoisySphere()); } },
+      { "ReuseProgressAbort", [] { return TestReuseProgressAbort(NoisySphere()); } },
+      { "OnlyConstantHarmonics", [] { return TestOnlyConstantHarmonics(NoisySphere()); } },
+      { "NoPolygons", TestNoPolygons },
+    });
 }

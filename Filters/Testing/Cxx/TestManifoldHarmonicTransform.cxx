@@ -249,11 +249,8 @@ bool TestSelectionModifies()
 // Runs the transform on `input` and expects an error mentioning each of `words`.
 bool ExpectError(vtkPointSet* input, const std::string& words1, const std::string& words2)
 {
-  vtkNew<vtkTest::ErrorObserver> filterErrors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
   vtkNew<vtkManifoldHarmonicTransform> transform;
-  transform->AddObserver(vtkCommand::ErrorEvent, filterErrors);
-  transform->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages filterErrors(transform);
   transform->SetInputData(input);
   transform->Update();
   const std::string message = filterErrors->GetErrorMessage();
@@ -351,13 +348,15 @@ bool TestAbort()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestManifoldHarmonicTransform(int, char*[])
+int TestManifoldHarmonicTransform(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestNamesAndShapes();
-  ok &= TestDefinitionAndPrecision();
-  ok &= TestSelectionModifies();
-  ok &= TestErrors();
-  ok &= TestAbort();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "NamesAndShapes", TestNamesAndShapes },
+      { "DefinitionAndPrecision", TestDefinitionAndPrecision },
+      { "SelectionModifies", TestSelectionModifies },
+      { "Errors", TestErrors },
+      { "Abort", TestAbort },
+    });
 }

@@ -6,7 +6,6 @@
 // - the basis of the quadrilaterals as vtkPolyData and as vtkUnstructuredGrid cells is the same;
 // - the spectral filter's Nyquist frequency on the quadrilaterals is that of the triangles
 //   vtkTriangleFilter makes of them (the triangles the basis solved on).
-// Run with a case name as argument to run that case alone.
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -22,7 +21,6 @@
 
 #include "ManifoldHarmonicsTestUtilities.h"
 
-#include <cstring>
 #include <functional>
 #include <string>
 
@@ -114,31 +112,15 @@ bool NyquistOfTheSolvedTriangles()
     "the filter's Nyquist frequency is that of the triangles the basis solved on");
 }
 
-struct Case
-{
-  const char* Name;
-  std::function<bool()> Run;
-};
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
 int TestPolygonRule(int argc, char* argv[])
 {
-  const Case cases[] = {
-    { "SameSplitInEveryPointSet", SameSplitInEveryPointSet },
-    { "NyquistOfTheSolvedTriangles", NyquistOfTheSolvedTriangles },
-  };
-  const char* only = argc > 1 && argv[argc - 1][0] != '-' ? argv[argc - 1] : nullptr;
-  bool ok = true;
-  bool found = only == nullptr;
-  for (const Case& c : cases)
-  {
-    if (!only || std::strcmp(only, c.Name) == 0)
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
     {
-      found = true;
-      std::cout << c.Name << std::endl;
-      ok &= c.Run();
-    }
-  }
-  return ok && found ? EXIT_SUCCESS : EXIT_FAILURE;
+      { "SameSplitInEveryPointSet", SameSplitInEveryPointSet },
+      { "NyquistOfTheSolvedTriangles", NyquistOfTheSolvedTriangles },
+    });
 }

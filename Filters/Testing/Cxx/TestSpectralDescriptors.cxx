@@ -257,9 +257,7 @@ bool TestShapeDNAFromEigenvaluesOnly()
   // layout moves where the solver's sums start).
   bool ok = Check(a && b && RelativeDifference(b, a) <= 1e-12,
     "ShapeDNA from an EigenvaluesOnly basis differs from the full basis's");
-  vtkNew<vtkTest::ErrorObserver> warnings;
-  spectrum->AddObserver(vtkCommand::WarningEvent, warnings);
-  spectrum->AddObserver(vtkCommand::ErrorEvent, warnings);
+  const ManifoldHarmonicsTest::Messages warnings(spectrum);
   spectrum->ComputeHeatKernelSignatureOn();
   spectrum->Update();
   ok &= Check(warnings->GetWarning() && !warnings->GetError() &&
@@ -339,17 +337,12 @@ bool TestFloatBasis()
 // One execution that must fail with an error containing `expected` and leave an empty output.
 bool ExpectError(vtkSpectralDescriptors* filter, vtkPolyData* input, const std::string& expected)
 {
-  vtkNew<vtkTest::ErrorObserver> errors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
-  filter->AddObserver(vtkCommand::ErrorEvent, errors);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages errors(filter);
   filter->SetInputData(input);
   filter->Update();
   const std::string message = errors->GetErrorMessage();
   // The message without its "ERROR: In file, line" prefix (the test fails on "ERROR: ").
   std::cout << "Expected error: " << message.substr(message.find('\n') + 1);
-  filter->RemoveObserver(errors);
-  filter->GetExecutive()->RemoveObserver(executiveErrors);
   return Check(errors->GetError() && message.find(expected) != std::string::npos &&
       filter->GetOutput()->GetNumberOfPoints() == 0,
     "no error containing '" + expected + "' with an empty output");
@@ -427,17 +420,19 @@ bool TestAbort()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestSpectralDescriptors(int, char*[])
+int TestSpectralDescriptors(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestSphere();
-  ok &= TestRigidMotion();
-  ok &= TestDistances();
-  ok &= TestShapeDNA();
-  ok &= TestShapeDNAFromEigenvaluesOnly();
-  ok &= TestFloatBasis();
-  ok &= TestErrors();
-  ok &= TestWarnings();
-  ok &= TestAbort();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Sphere", TestSphere },
+      { "RigidMotion", TestRigidMotion },
+      { "Distances", TestDistances },
+      { "ShapeDNA", TestShapeDNA },
+      { "ShapeDNAFromEigenvaluesOnly", TestShapeDNAFromEigenvaluesOnly },
+      { "FloatBasis", TestFloatBasis },
+      { "Errors", TestErrors },
+      { "Warnings", TestWarnings },
+      { "Abort", TestAbort },
+    });
 }

@@ -236,9 +236,8 @@ bool TestFloatBasis()
     pipeline->Filter->SetCutoff(4.0);
   }
   vtkPolyData* reference = doubles.Run();
-  vtkNew<vtkTest::ErrorObserver> errors;
-  floats.Transform->AddObserver(vtkCommand::ErrorEvent, errors);
-  floats.Filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  ManifoldHarmonicsTest::Messages errors(floats.Transform);
+  errors.Observe(floats.Filter);
   vtkPolyData* output = floats.Run();
   bool ok = Check(!errors->GetError(), "float basis: " + errors->GetErrorMessage());
   const char* name = vtkManifoldHarmonicBasis::HarmonicsArrayName();
@@ -728,11 +727,8 @@ bool TestUnusedPoint()
   // NaN at a point of the surface: the transform of that array is undefined, an error says so.
   scalar->SetValue(0, nan);
   scalar->Modified();
-  vtkNew<vtkTest::ErrorObserver> errors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
-  pipeline.Transform->AddObserver(vtkCommand::ErrorEvent, errors);
-  pipeline.Transform->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-  pipeline.Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages errors(pipeline.Transform);
+  pipeline.Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors.Executive);
   pipeline.Run();
   const std::string message = errors->GetErrorMessage();
   ok &= Check(errors->GetError() && message.find("'S'") != std::string::npos &&
@@ -983,12 +979,8 @@ bool TestMissingInputs()
 {
   bool ok = true;
   vtkNew<vtkSphereSource> sphere;
-  vtkNew<vtkTest::ErrorObserver> errors;
-  vtkNew<vtkTest::ErrorObserver> executiveErrors;
   vtkNew<vtkSpectralFilter> filter;
-  filter->AddObserver(vtkCommand::ErrorEvent, errors);
-  filter->AddObserver(vtkCommand::WarningEvent, errors);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  const ManifoldHarmonicsTest::Messages errors(filter);
   filter->SetInputConnection(sphere->GetOutputPort());
   filter->Update();
   std::cout << "Expected error:" << AfterLocation(errors->GetErrorMessage());
@@ -1197,8 +1189,8 @@ struct Observed
   vtkNew<vtkManifoldHarmonicBasis> Basis;
   vtkNew<vtkManifoldHarmonicTransform> Transform;
   vtkNew<vtkSpectralFilter> Filter;
-  vtkNew<vtkTest::ErrorObserver> Messages;
-  vtkNew<vtkTest::ErrorObserver> ExecutiveErrors;
+  // The filter's errors and warnings, and apart its executive's report of a failed execution.
+  ManifoldHarmonicsTest::Messages Messages;
 
   explicit Observed(vtkPolyData* mesh, int harmonics = 20)
   {
@@ -1206,10 +1198,7 @@ struct Observed
     this->Basis->SetNumberOfHarmonics(harmonics);
     this->Transform->SetInputConnection(this->Basis->GetOutputPort());
     this->Filter->SetInputConnection(this->Transform->GetOutputPort());
-    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
-    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
-    // The executive's report of a failed execution (the filter's own error is in Messages).
-    this->Filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->ExecutiveErrors);
+    this->Messages.Observe(this->Filter);
     this->Transform->Update();
   }
   /// Whether the filter succeeded; the messages are those of this execution.
@@ -1356,9 +1345,7 @@ bool TestCutoffsOutsideTheSpectrum()
   fields->AddArray(tiny); // replaces the basis's eigenvalues
   rounded->SetFieldData(fields);
   vtkNew<vtkSpectralFilter> split;
-  vtkNew<vtkTest::ErrorObserver> splitMessages;
-  split->AddObserver(vtkCommand::WarningEvent, splitMessages);
-  split->AddObserver(vtkCommand::ErrorEvent, splitMessages);
+  const ManifoldHarmonicsTest::Messages splitMessages(split);
   split->SetInputData(rounded);
   split->SetCutoffUnitsToAbsoluteFrequency();
   split->SetCutoff(std::sqrt(4.5e-12));
@@ -1376,29 +1363,31 @@ bool TestCutoffsOutsideTheSpectrum()
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestSpectralFilter(int, char*[])
+int TestSpectralFilter(int argc, char* argv[])
 {
-  bool ok = true;
-  ok &= TestIdentity();
-  ok &= TestCompleteBasis();
-  ok &= TestFloatBasis();
-  ok &= TestLinearity();
-  ok &= TestNoisySphere();
-  ok &= TestColorsAndNormals();
-  ok &= TestHeatDiffusion();
-  ok &= TestChaining();
-  ok &= TestUnrepresentedComponent();
-  ok &= TestUnusedPoint();
-  ok &= TestNyquistFollowsInput();
-  ok &= TestNyquistSameMTime();
-  ok &= TestNumberOfThreads();
-  ok &= TestAbort();
-  ok &= TestInteractive();
-  ok &= TestMissingInputs();
-  ok &= TestSliderRanges();
-  ok &= TestDefaultCutoffAtAnyScale();
-  ok &= TestCutoffUnits();
-  ok &= TestNegativeCutoffs();
-  ok &= TestCutoffsOutsideTheSpectrum();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Identity", TestIdentity },
+      { "CompleteBasis", TestCompleteBasis },
+      { "FloatBasis", TestFloatBasis },
+      { "Linearity", TestLinearity },
+      { "NoisySphere", TestNoisySphere },
+      { "ColorsAndNormals", TestColorsAndNormals },
+      { "HeatDiffusion", TestHeatDiffusion },
+      { "Chaining", TestChaining },
+      { "UnrepresentedComponent", TestUnrepresentedComponent },
+      { "UnusedPoint", TestUnusedPoint },
+      { "NyquistFollowsInput", TestNyquistFollowsInput },
+      { "NyquistSameMTime", TestNyquistSameMTime },
+      { "NumberOfThreads", TestNumberOfThreads },
+      { "Abort", TestAbort },
+      { "Interactive", TestInteractive },
+      { "MissingInputs", TestMissingInputs },
+      { "SliderRanges", TestSliderRanges },
+      { "DefaultCutoffAtAnyScale", TestDefaultCutoffAtAnyScale },
+      { "CutoffUnits", TestCutoffUnits },
+      { "NegativeCutoffs", TestNegativeCutoffs },
+      { "CutoffsOutsideTheSpectrum", TestCutoffsOutsideTheSpectrum },
+    });
 }

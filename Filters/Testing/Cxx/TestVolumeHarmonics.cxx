@@ -385,10 +385,7 @@ bool TestErrors()
   const auto expectError = [](vtkDataObject* input, const std::string& text)
   {
     vtkNew<vtkManifoldHarmonicBasis> basis;
-    vtkNew<vtkTest::ErrorObserver> errors;
-    vtkNew<vtkTest::ErrorObserver> executive;
-    basis->AddObserver(vtkCommand::ErrorEvent, errors);
-    basis->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+    const ManifoldHarmonicsTest::Messages errors(basis);
     basis->SetInputData(input);
     basis->Update();
     // The message without its "ERROR: In file, line" prefix (which would fail the test).
@@ -580,12 +577,15 @@ bool TestSmoothing()
 }
 } // anonymous namespace
 
-int TestVolumeHarmonics(int, char*[])
+int TestVolumeHarmonics(int argc, char* argv[])
 {
-  bool ok = TestTetrahedra();
-  ok &= TestSplitCells();
-  ok &= TestErrors();
-  ok &= TestPointClouds();
-  ok &= TestSmoothing();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Tetrahedra", TestTetrahedra },
+      { "SplitCells", TestSplitCells },
+      { "Errors", TestErrors },
+      { "PointClouds", TestPointClouds },
+      { "Smoothing", TestSmoothing },
+    });
 }

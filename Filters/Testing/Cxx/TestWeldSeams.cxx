@@ -448,12 +448,8 @@ bool TestKeepSeamsOpen(vtkPolyData* soup)
 // constant harmonics, an error.
 bool TestSmoothingSwitch(vtkPolyData* soup)
 {
-  vtkNew<vtkTest::ErrorObserver> messages;
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
-  smoothing->AddObserver(vtkCommand::ErrorEvent, messages);
-  smoothing->AddObserver(vtkCommand::WarningEvent, messages);
-  vtkNew<vtkTest::ErrorObserver> executive;
-  smoothing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executive);
+  const ManifoldHarmonicsTest::Messages messages(smoothing);
   smoothing->SetNumberOfHarmonics(Harmonics);
   smoothing->WeldSeamsOff();
   smoothing->SetInputData(soup);
@@ -479,37 +475,83 @@ bool TestPrintSelf()
     "the smoothing prints WeldSeams and SeamTolerance");
   return ok;
 }
+
+//------------------------------------------------------------------------------
+// What the cases compare: the sphere, its soup (source: the sphere's point of each soup point),
+// their bases with WeldSeams on, and the warnings of the soup's basis.
+struct SoupOfSphere
+{
+  vtkSmartPointer<vtkPolyData> Sphere = ManifoldHarmonicsTest::UnitSphere(24, 16);
+  std::vector<vtkIdType> Source;
+  vtkSmartPointer<vtkPolyData> Soup = MakeSoup(this->Sphere, this->Source);
+  vtkSmartPointer<vtkPolyData> SphereBasis = Basis(this->Sphere, true);
+  std::string Warnings;
+  vtkSmartPointer<vtkPolyData> SoupBasis = Basis(this->Soup, true, &this->Warnings);
+};
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-int TestWeldSeams(int, char*[])
+int TestWeldSeams(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkPolyData> sphere = ManifoldHarmonicsTest::UnitSphere(24, 16);
-  std::vector<vtkIdType> source;
-  vtkSmartPointer<vtkPolyData> soup = MakeSoup(sphere, source);
-  vtkSmartPointer<vtkPolyData> sphereBasis = Basis(sphere, true);
-  std::string warnings;
-  vtkSmartPointer<vtkPolyData> soupBasis = Basis(soup, true, &warnings);
-
-  bool ok = TestSpectrum(sphereBasis, soupBasis);
-  ok &= Check(warnings.find("connected components") == std::string::npos,
-    "the welded soup is one component (no warning about components): " + warnings);
-  ok &= TestSubspace(sphereBasis, soupBasis, source);
-  ok &= TestOutputKeepsInput(soup, soupBasis);
-  ok &= Check(IdenticalAtCopies(soupBasis->GetPointData()->GetArray("ManifoldHarmonics"),
-                source,
-                sphere->GetNumberOfPoints()),
-    "every copy of a point has the same harmonics");
-  ok &= Check(IdenticalAtCopies(soupBasis->GetPointData()->GetArray("ManifoldHarmonicsMass"),
-                source,
-                sphere->GetNumberOfPoints()),
-    "every copy of a point has the same mass");
-  ok &= TestCountedOnce(sphereBasis, soupBasis);
-  ok &= TestTransform(sphereBasis, soupBasis);
-  ok &= TestDownstream(sphereBasis, soupBasis, sphere, soup, source);
-  ok &= TestTolerance(sphereBasis, soup, source);
-  ok &= TestKeepSeamsOpen(soup);
-  ok &= TestSmoothingSwitch(soup);
-  ok &= TestPrintSelf();
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  using Soup = SoupOfSphere;
+  return ManifoldHarmonicsTest::RunCases(argc,
+    argv,
+    {
+      { "Spectrum",
+        [] {
+          const Soup s;
+          bool ok = TestSpectrum(s.SphereBasis, s.SoupBasis);
+          ok &= Check(s.Warnings.find("connected components") == std::string::npos,
+            "the welded soup is one component (no warning about components): " + s.Warnings);
+          return ok;
+        } },
+      { "Subspace",
+        [] {
+          const Soup s;
+          return TestSubspace(s.SphereBasis, s.SoupBasis, s.Source);
+        } },
+      { "OutputKeepsInput",
+        [] {
+          const Soup s;
+          return TestOutputKeepsInput(s.Soup, s.SoupBasis);
+        } },
+      { "CopiesIdentical",
+        [] {
+          const Soup s;
+          bool ok =
+            Check(IdenticalAtCopies(s.SoupBasis->GetPointData()->GetArray("ManifoldHarmonics"),
+                    s.Source,
+                    s.Sphere->GetNumberOfPoints()),
+              "every copy of a point has the same harmonics");
+          ok &=
+            Check(IdenticalAtCopies(s.SoupBasis->GetPointData()->GetArray("ManifoldHarmonicsMass"),
+                    s.Source,
+                    s.Sphere->GetNumberOfPoints()),
+              "every copy of a point has the same mass");
+          return ok;
+        } },
+      { "CountedOnce",
+        [] {
+          const Soup s;
+          return TestCountedOnce(s.SphereBasis, s.SoupBasis);
+        } },
+      { "Transform",
+        [] {
+          const Soup s;
+          return TestTransform(s.SphereBasis, s.SoupBasis);
+        } },
+      { "Downstream",
+        [] {
+          const Soup s;
+          return TestDownstream(s.SphereBasis, s.SoupBasis, s.Sphere, s.Soup, s.Source);
+        } },
+      { "Tolerance",
+        [] {
+          const Soup s;
+          return TestTolerance(s.SphereBasis, s.Soup, s.Source);
+        } },
+      { "KeepSeamsOpen", [] { return TestKeepSeamsOpen(SoupOfSphere().Soup); } },
+      { "SmoothingSwitch", [] { return TestSmoothingSwitch(SoupOfSphere().Soup); } },
+      { "PrintSelf", TestPrintSelf },
+    });
 }
