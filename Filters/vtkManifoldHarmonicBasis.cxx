@@ -607,10 +607,6 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   {
     unsupported = "EigenvaluesOnly";
   }
-  else if (this->FrequencyWindow[1] > 0.0)
-  {
-    unsupported = "FrequencyWindow";
-  }
   else if (this->MinimumComponentSize > 0)
   {
     unsupported = "MinimumComponentSize";
@@ -635,6 +631,14 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   settings.MaxIterations = this->MaxIterations;
   settings.WeldSeams = this->WeldSeams;
   settings.SeamTolerance = this->SeamTolerance;
+  settings.LowerFrequency = this->FrequencyWindow[0];
+  settings.UpperFrequency = this->FrequencyWindow[1];
+  // The owner rule of every path (Spectral/Common/Seams.h) reads the input's point ghost flags.
+  const spectral::Vector ownedPoints = vtkManifoldHarmonicsGhosts::OwnedPoints(input);
+  for (Eigen::Index i = 0; i < ownedPoints.size(); ++i)
+  {
+    settings.OwnedPoints.push_back(ownedPoints[i] > 0.0 ? 1 : 0);
+  }
   settings.Progress = [this](double fraction) { this->UpdateProgress(0.95 * fraction); };
   settings.Stage = [this](const char* stage) { this->SetProgressText(stage); };
   settings.Cancelled = [this]() { return this->GetAbortExecute() != 0; };
