@@ -12,6 +12,8 @@
 //   names (Common/Seams.h, WeldPoints on the pieces in rank order with their ownership flags):
 //   with the seam points flagged as ghosts on rank 0, rank 1 owns them; without flags, rank 0.
 // - WindowMatchesSerial: a frequency window gives the serial window's pairs and first index.
+// - OwnersAsTheGatherPath: the SLEPc numbering's owners are the copies the gather path's merge
+//   counts (WeldPoints on all pieces' points in rank order), seams differing by round-off.
 #include "Checks.h"
 #include "Meshes.h"
 
@@ -310,11 +312,83 @@ void OwnersFollowTheOwnerRule()
   }
 }
 
+//------------------------------------------------------------------------------
+// The SLEPc numbering's owners against the gather path's merge (vtkManifoldHarmonicsParallel::
+// GatherAndMerge: WeldPoints on every piece's points in rank order, with their ownership flags,
+// the copy Counted owns), on pieces whose seam copies differ by round-off (as the Sphere
+// source's pieces do) and whose seam is flagged as ghosts on rank 0.
+void OwnersAsTheGatherPath()
+{
+  const TriangleMesh mesh = Icosphere(3);
+  Piece piece = CutPiece(mesh, Rank(), Size());
+  // Round-off on this rank's copies, and the seam (points another rank holds) flagged on rank 0.
+  std::vector<int> holders(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
+  for (const int source : piece.Source)
+  {
+    holders[static_cast<std::size_t>(source)] = 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, holders.data(), static_cast<int>(holders.size()), MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  std::vector<unsigned char> flags(piece.Source.size(), 1);
+  for (std::size_t i = 0; i < piece.Source.size(); ++i)
+  {
+    piece.Mesh.Vertices.row(static_cast<Eigen::Index>(i)) *= 1.0 + (Rank() + 1) * 1e-15;
+    flags[i] = Rank() == 0 && holders[static_cast<std::size_t>(piece.Source[i])] > 1 ? 0 : 1;
+  }
+  DistributedOptions options;
+  options.NumberOfHarmonics = 4;
+  options.OwnedPoints = flags;
+  const DistributedResult result = SolveDistributed(MPI_COMM_WORLD, piece.Mesh, options);
+
+  // The gather path's merge of all pieces' points (row-major coordinates) and flags.
+  const int count = static_cast<int>(piece.Source.size());
+  std::vector<int> counts(static_cast<std::size_t>(Size()));
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> offsets(counts.size() + 1, 0);
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    offsets[r + 1] = offsets[r] + counts[r];
+  }
+  std::vector<double> xyz(3 * static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      xyz[3 * i + c] = piece.Mesh.Vertices(i, c);
+    }
+  }
+  std::vector<int> counts3(counts.size());
+  std::vector<int> offsets3(counts.size());
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    counts3[r] = 3 * counts[r];
+    offsets3[r] = 3 * offsets[r];
+  }
+  std::vector<double> allXyz(3 * static_cast<std::size_t>(offsets.back()));
+  std::vector<unsigned char> allFlags(static_cast<std::size_t>(offsets.back()));
+  MPI_Allgatherv(xyz.data(), 3 * count, MPI_DOUBLE, allXyz.data(), counts3.data(), offsets3.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  MPI_Allgatherv(flags.data(), count, MPI_UNSIGNED_CHAR, allFlags.data(), counts.data(), offsets.data(), MPI_UNSIGNED_CHAR, MPI_COMM_WORLD);
+  const Welding gathered =
+    WeldPoints(allXyz.data(), offsets.back(), nullptr, DefaultSeamTolerance, allFlags);
+  long long differ = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    differ += gathered.Owns(offsets[Rank()] + i) == !result.Duplicate[static_cast<std::size_t>(i)] ? 0 : 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  Check(gathered.Merged() && static_cast<long long>(gathered.First.size()) == result.GlobalPoints,
+    "the gather path's merge and the SLEPc numbering find the same " +
+      std::to_string(result.GlobalPoints) + " points");
+  Check(differ == 0,
+    "every copy owns its point in the SLEPc numbering exactly when the gather path counts it (" +
+      std::to_string(differ) + " differ)");
+}
+
 const Case Cases[] = {
   { "SphereMatchesSerial", SphereMatchesSerial },
   { "BoxMatchesSerial", BoxMatchesSerial },
   { "OwnersFollowTheOwnerRule", OwnersFollowTheOwnerRule },
   { "WindowMatchesSerial", WindowMatchesSerial },
+  { "OwnersAsTheGatherPath", OwnersAsTheGatherPath },
 };
 } // namespace
 
