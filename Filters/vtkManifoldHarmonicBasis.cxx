@@ -440,10 +440,6 @@ std::string SlepcUnsupported(vtkManifoldHarmonicBasis* self)
   {
     return "EigenvaluesOnly";
   }
-  if (self->GetFrequencyWindow()[1] > 0.0)
-  {
-    return "FrequencyWindow";
-  }
   if (self->GetMinimumComponentSize() > 0)
   {
     return "MinimumComponentSize";
@@ -502,7 +498,8 @@ bool SlepcPiecesUsable(vtkManifoldHarmonicBasis* self,
 //------------------------------------------------------------------------------
 // The settings of the filter as the SLEPc solver's, its progress, steps, warnings and abort
 // flag through the filter (progress [0, 0.95]; writing the arrays is the rest).
-vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self)
+vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self,
+  vtkPointSet* input)
 {
   vtkManifoldHarmonicsSlepc::Settings settings;
   settings.NumberOfHarmonics = self->GetNumberOfHarmonics();
@@ -513,6 +510,14 @@ vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self
   settings.MaxIterations = self->GetMaxIterations();
   settings.WeldSeams = self->GetWeldSeams();
   settings.SeamTolerance = self->GetSeamTolerance();
+  settings.LowerFrequency = self->GetFrequencyWindow()[0];
+  settings.UpperFrequency = self->GetFrequencyWindow()[1];
+  // The owner rule of every path (Spectral/Common/Seams.h) reads the input's point ghost flags.
+  const spectral::Vector ownedPoints = vtkManifoldHarmonicsGhosts::OwnedPoints(input);
+  for (Eigen::Index i = 0; i < ownedPoints.size(); ++i)
+  {
+    settings.OwnedPoints.push_back(ownedPoints[i] > 0.0 ? 1 : 0);
+  }
   settings.Progress = [self](double fraction) { self->UpdateProgress(0.95 * fraction); };
   settings.Stage = [self](const char* stage) { self->SetProgressText(stage); };
   settings.Cancelled = [self]() { return self->GetAbortExecute() != 0; };
@@ -529,15 +534,8 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
   vtkPointSet* input,
   vtkPointSet* output)
 {
-  vtkManifoldHarmonicsSlepc::Result result;
-  try
-  {
-    result = vtkManifoldHarmonicsSlepc::Solve(controller, mesh, SlepcSettings(self));
-  }
-  catch (const vtkManifoldHarmonicsSlepc::Cancelled&)
-  {
-    throw spectral::Cancelled();
-  }
+  const vtkManifoldHarmonicsSlepc::Result result =
+    vtkManifoldHarmonicsSlepc::Solve(controller, mesh, SlepcSettings(self, input));
   AddPieceArrays(
     output, input, result.Rows, self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
   for (const auto& figure :

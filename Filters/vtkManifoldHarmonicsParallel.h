@@ -21,6 +21,7 @@
 #ifndef vtkManifoldHarmonicsParallel_h
 #define vtkManifoldHarmonicsParallel_h
 
+#include "Spectral/Common/Seams.h"
 #include "Spectral/Filtering/Transfer.h"
 
 #include "vtkSmartPointer.h"
@@ -37,40 +38,12 @@ class vtkUnsignedCharArray;
 
 namespace vtkManifoldHarmonicsParallel
 {
-/// The default of vtkManifoldHarmonicBasis::SeamTolerance: points within this fraction of the
-/// bounding box diagonal are one point (pieces, or the faces of an unwelded mesh, may compute a
-/// shared point differently: a sphere's 0 and 360 degree meridians differ by 1e-16 in sin(2 pi)).
-constexpr double SeamTolerance = 1e-12;
+/// The default of vtkManifoldHarmonicBasis::SeamTolerance (Spectral/Common/Seams.h).
+constexpr double SeamTolerance = spectral::DefaultSeamTolerance;
 
-/**
- * The seam rule of every path (serial, gather to process 0, SLEPc): which points are one point.
- * A point within `tolerance` times the diagonal of `bounds` of the first copy of a welded point
- * met before it (in the order given) is merged into the earliest such welded point; otherwise it
- * starts a welded point of its own. `bounds` gives the diagonal (the same on every process),
- * nullptr means the bounding box of the finite points. A point with a NaN or infinite coordinate
- * stays apart (the solver reports it if a cell uses it). The point that stands for a welded point
- * in sums over points is its first copy that `owned` marks (nonzero), or its first copy if none is
- * marked (or `owned` is empty); the other copies are flagged
- * vtkManifoldHarmonicsGhosts::NotOwnedPointFlag so that they count zero times.
- */
-struct Welding
-{
-  /// Map[i]: the welded point of point i; welded points are numbered in order of first copy.
-  std::vector<vtkIdType> Map;
-  /// First[j]: the first copy of welded point j (it gives the coordinates).
-  std::vector<vtkIdType> First;
-  /// Counted[j]: the copy of welded point j that sums over points count (see above).
-  std::vector<vtkIdType> Counted;
-  /// Whether some points were merged.
-  bool Merged() const { return this->First.size() < this->Map.size(); }
-};
-
-/// The welding of the n points `xyz` (row-major, n by 3), see Welding.
-Welding WeldPoints(const double* xyz,
-  vtkIdType n,
-  const double* bounds,
-  double tolerance,
-  const std::vector<unsigned char>& owned = {});
+/// The seam rule of every path and its owner rule: Spectral/Common/Seams.h.
+using spectral::Welding;
+using spectral::WeldPoints;
 
 /// The global controller when it has more than one process, otherwise nullptr (serial run).
 vtkMultiProcessController* DistributedController();

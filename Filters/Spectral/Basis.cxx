@@ -1,7 +1,9 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Basis.h"
+#include "Problem.h"
 
+#include "Solver/Acceptance.h"
 #include "Solver/Verification.h"
 
 #include <algorithm>
@@ -15,58 +17,6 @@ namespace spectral
 {
 namespace
 {
-//------------------------------------------------------------------------------
-// Passes the warnings on to the monitor and keeps them in the result.
-void Report(const std::vector<std::string>& warnings, const Monitor& monitor, BasisResult& result)
-{
-  for (const std::string& text : warnings)
-  {
-    result.Warnings.push_back(text);
-    monitor.Warn(text);
-  }
-}
-//------------------------------------------------------------------------------
-// Number of harmonics to compute: the request, clamped with a warning to the usable points.
-int ClampedHarmonics(int requested,
-  int usable,
-  const std::string& what,
-  const Monitor& monitor,
-  BasisResult& result)
-{
-  if (requested < 1)
-  {
-    throw InvalidInput(
-      "the number of harmonics must be at least 1, not " + std::to_string(requested));
-  }
-  if (requested <= usable)
-  {
-    return requested;
-  }
-  Report({ "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
-           std::to_string(usable) + ", the number of points " + what + "." },
-    monitor,
-    result);
-  return usable;
-}
-
-//------------------------------------------------------------------------------
-// Throws InsufficientMemory when the estimate for this computation exceeds what is available.
-void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const BasisOptions& options)
-{
-  const MemoryEstimate need = EstimateBasisMemory(static_cast<std::uint64_t>(mesh.Vertices.rows()),
-    static_cast<std::uint64_t>(used),
-    m,
-    options.Solver.BandSize,
-    options.EigenvaluesOnly ? 0 : options.BytesPerValue,
-    !options.EigenvaluesOnly,
-    mesh.IsVolume());
-  const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
-  if (available != 0 && need.Total() > available)
-  {
-    throw InsufficientMemory(need, available, m);
-  }
-}
-
 //------------------------------------------------------------------------------
 // AchievableResidual (Verification.h) of L h = lambda M h: Gershgorin's bound on D^-1 L (D the
 // row sums of M, the lumped mass) and the mesh's diameter. Sets `ratio`.
@@ -126,22 +76,21 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
   {
     double ratio = 0.0;
     const double achievable = OperatorsAchievableResidual(L, M, state.Diameter, ratio);
-    if (!(achievable > options.ResidualTolerance))
+    const Decision relaxed = Relaxation(options.ResidualTolerance, achievable, ratio);
+    if (relaxed.Outcome == Verdict::Fail && relaxed.Error.empty())
     {
       throw;
     }
-    if (achievable > MeaningfulResidual)
+    if (relaxed.Outcome == Verdict::Fail)
     {
-      throw SolverFailure(std::string(e.what()) + "; " + UnresolvableResidual(ratio), e.Converged);
+      throw SolverFailure(std::string(e.what()) + "; " + relaxed.Error, e.Converged);
     }
     if (!state.Relaxed)
     {
-      Report({ RelaxedResidualWarning(achievable, options.ResidualTolerance, ratio) },
-        *state.Warnings,
-        *state.Basis);
+      Report({ relaxed.Warning }, *state.Warnings, *state.Basis);
       state.Relaxed = true;
     }
-    options.ResidualTolerance = achievable;
+    options.ResidualTolerance = relaxed.ResidualTolerance;
     result = SmallestEigenpairs(L, M, options, monitor);
   }
   if (result.Eigenvalues.size() > wanted)
@@ -153,34 +102,6 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
     }
   }
   return result;
-}
-
-//------------------------------------------------------------------------------
-// Warnings about the components, before the solve: how many zero eigenvalues they give, how to
-// weld unwelded seams, and a request for no more harmonics than components.
-void ReportComponents(int components, int m, const Monitor& monitor, BasisResult& result)
-{
-  if (components <= 1)
-  {
-    return;
-  }
-  const std::string count = std::to_string(components);
-  Report({ "The surface has " + count + " connected components: the first " + count +
-           " eigenvalues are zero, one for each. If they are pieces of one surface whose "
-           "seams are not welded, weld them: WeldSeams on, with a SeamTolerance above the gap "
-           "between the copies of a seam point (or vtkCleanPolyData, Clean in ParaView, with a "
-           "tolerance); leave out small debris with MinimumComponentSize." },
-    monitor,
-    result);
-  if (m <= components)
-  {
-    Report({ "NumberOfHarmonics " + std::to_string(m) + " does not exceed the " + count +
-             " connected components: every harmonic is constant on one component (eigenvalue "
-             "0), so filtering can only move whole components. Ask for more than " +
-             count + " harmonics, or leave out small components with MinimumComponentSize." },
-      monitor,
-      result);
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -221,17 +142,62 @@ void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
 }
 
 //------------------------------------------------------------------------------
-// The frequency window in the units of the operators (frequencies times s), checked.
-std::pair<double, double> Window(const BasisOptions& options, double s)
+// The eigensolve stage of ComputeBasis: each connected component with the fallbacks, the m
+// smallest pairs or those of the frequency window.
+EigenResult SolveProblem(const TriangleMesh& mesh,
+  const Problem& problem,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result)
 {
-  const double low = options.LowerFrequency * s;
-  const double high = options.UpperFrequency * s;
-  if (!(options.LowerFrequency >= 0.0) || !(high > low) || !std::isfinite(high))
+  const DiscreteLaplacian& ops = problem.Operators;
+  Fallbacks state;
+  state.Options = options.Solver;
+  state.Options.KeepEigenvectors = !options.EigenvaluesOnly;
+  state.Diameter = ops.Diameter;
+  state.ConstantHarmonics = ops.ConstantHarmonics;
+  state.Warnings = &monitor;
+  state.Basis = &result;
+  const PairSolver solve =
+    [&state](
+      const SparseMatrix& L, const SparseMatrix& M, const PairRequest& request, const Monitor& part)
+  { return SolveWithFallbacks(L, M, request, part, state); };
+  if (!problem.Window)
   {
-    throw InvalidInput("the frequency window [" + std::to_string(options.LowerFrequency) + ", " +
-      std::to_string(options.UpperFrequency) + ") must have 0 <= lower < upper < infinity");
+    return SmallestEigenpairsByComponent(ops.Stiffness,
+      ops.Mass,
+      ops.LumpedMass,
+      ops.Components.Label,
+      ops.Components.Count,
+      problem.Harmonics,
+      solve,
+      monitor.Scaled(0.1, 1.0),
+      ops.ConstantHarmonics);
   }
-  return { low, high };
+  // Each component from the lower end of the window up: the bands start there. Its pairs are
+  // counted first (the inertia of L - omega^2 M at both ends, per component).
+  const auto counted = [&](int below, int inWindow)
+  {
+    if (inWindow <= 0)
+    {
+      throw InvalidInput(EmptyWindow(options.LowerFrequency, options.UpperFrequency, below));
+    }
+    if (options.CheckMemory)
+    {
+      CheckMemory(mesh, ops.Stiffness.rows(), inWindow, options);
+    }
+    ReportComponentsOf(problem, inWindow, monitor, result);
+  };
+  return EigenpairsInWindowByComponent(ops.Stiffness,
+    ops.Mass,
+    ops.Components.Label,
+    ops.Components.Count,
+    problem.WindowEigenvalues.first,
+    problem.WindowEigenvalues.second,
+    solve,
+    counted,
+    result.FirstIndex,
+    monitor.Scaled(0.1, 1.0));
 }
 
 //------------------------------------------------------------------------------
@@ -268,161 +234,21 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   const Clock::time_point start = Clock::now();
   BasisResult result;
   monitor.Begin("Assemble");
-  const bool window = options.UpperFrequency > 0.0;
-  const bool cloud = mesh.IsPointCloud();
-  PreparedMesh prepared;
-  DiscreteLaplacian ops;
-  int m = 0;
-  double s = 1.0;
-  if (cloud)
-  {
-    // A point cloud: the operators of PointCloudLaplacian, in the same units as a mesh's.
-    if (options.Operators.Laplacian != LaplacianKind::Cotangent ||
-      options.Operators.Boundary != BoundaryCondition::Neumann || options.MinimumComponentSize > 0)
-    {
-      Report({ "A point cloud has its own Laplacian (Sharp and Crane's, on the local Delaunay "
-               "triangulations of its neighbourhoods) with natural conditions: the Laplacian, "
-               "BoundaryCondition and MinimumComponentSize settings do not apply to it." },
-        monitor,
-        result);
-    }
-    // Every point of a cloud is a candidate, and the unit comes from all of them: a coordinate
-    // beyond MaxCoordinate (even of a point left out later) would make the others vanish in it.
-    for (Eigen::Index i = 0; i < mesh.Vertices.rows(); ++i)
-    {
-      CheckCoordinates(mesh.Vertices, i);
-    }
-    s = UnitScale(BoundingBoxDiagonal(mesh.Vertices));
-    PointCloudOptions cloudOptions;
-    cloudOptions.NumberOfNeighbors = options.NumberOfNeighbors;
-    cloudOptions.Mass = options.Operators.Mass;
-    ops = PointCloudLaplacian(Points(mesh.Vertices / s), cloudOptions, monitor.Scaled(0.0, 0.1));
-    Report(ops.Warnings, monitor, result);
-    const Eigen::Index used = ops.Stiffness.rows();
-    if (!window)
-    {
-      m = ClampedHarmonics(options.NumberOfHarmonics,
-        static_cast<int>(used),
-        "the point cloud triangulates",
-        monitor,
-        result);
-      if (options.CheckMemory)
-      {
-        CheckMemory(mesh, used, m, options);
-      }
-    }
-  }
-  else
-  {
-    prepared = LeaveOutSmallComponents(PrepareMesh(mesh), options.MinimumComponentSize);
-    Report(PreparationWarnings(prepared), monitor, result);
-    const Eigen::Index used = prepared.Mesh.Vertices.rows();
-    if (used == 0)
-    {
-      throw InvalidInput(prepared.SmallComponents > 0
-          ? "every connected component is smaller than MinimumComponentSize"
-          : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
-                            : "every triangle of the input is degenerate (zero area)");
-    }
-    m = window ? 0
-               : ClampedHarmonics(options.NumberOfHarmonics,
-                   static_cast<int>(used),
-                   prepared.Volume ? "tetrahedra use" : "triangles use",
-                   monitor,
-                   result);
-    if (options.CheckMemory && !window)
-    {
-      CheckMemory(mesh, used, m, options);
-    }
-
-    // The operators of the mesh in units of its size: lambda scales as 1 / s^2, the mass (an
-    // area or a volume) as s^d, the M-normalized harmonics as s^(-d/2).
-    s = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
-    prepared.Mesh.Vertices /= s;
-    ops = AssembleLaplacian(prepared, options.Operators, monitor);
-    Report(ops.Warnings, monitor, result);
-  }
-  const Eigen::Index used = ops.Stiffness.rows();
-  result.BoundaryPoints = ops.BoundaryPoints;
-  if (!window && ops.Stiffness.rows() < m)
-  {
-    m = ClampedHarmonics(
-      m, static_cast<int>(ops.Stiffness.rows()), "inside the boundary", monitor, result);
-  }
-  const std::pair<double, double> range = window ? Window(options, s) : std::make_pair(0.0, 0.0);
-  result.Components = ops.Components.Count;
-  result.ConstantHarmonics = ops.ConstantHarmonics;
-  if (ops.ConstantHarmonics && !window)
-  {
-    ReportComponents(result.Components, m, monitor, result);
-  }
+  Problem problem = PrepareProblem(mesh, options, monitor, result);
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
   monitor.Report(0.1);
   monitor.ThrowIfCancelled();
 
   monitor.Begin("Eigensolve");
-  Fallbacks state;
-  state.Options = options.Solver;
-  state.Options.KeepEigenvectors = !options.EigenvaluesOnly;
-  state.Diameter = ops.Diameter;
-  state.ConstantHarmonics = ops.ConstantHarmonics;
-  state.Warnings = &monitor;
-  state.Basis = &result;
-  const PairSolver solve =
-    [&state](
-      const SparseMatrix& L, const SparseMatrix& M, const PairRequest& request, const Monitor& part)
-  { return SolveWithFallbacks(L, M, request, part, state); };
-  if (window)
-  {
-    // Each component from the lower end of the window up: the bands start there. Its pairs are
-    // counted first (the inertia of L - omega^2 M at both ends, per component).
-    const auto counted = [&](int below, int inWindow)
-    {
-      if (inWindow <= 0)
-      {
-        throw InvalidInput("no eigenvalue lies in the frequency window [" +
-          std::to_string(options.LowerFrequency) + ", " + std::to_string(options.UpperFrequency) +
-          "): " + std::to_string(below) + " lie below it");
-      }
-      if (options.CheckMemory)
-      {
-        CheckMemory(mesh, used, inWindow, options);
-      }
-      if (ops.ConstantHarmonics)
-      {
-        ReportComponents(result.Components, inWindow, monitor, result);
-      }
-    };
-    result.Pairs = EigenpairsInWindowByComponent(ops.Stiffness,
-      ops.Mass,
-      ops.Components.Label,
-      ops.Components.Count,
-      range.first * range.first,
-      range.second * range.second,
-      solve,
-      counted,
-      result.FirstIndex,
-      monitor.Scaled(0.1, 1.0));
-  }
-  else
-  {
-    result.Pairs = SmallestEigenpairsByComponent(ops.Stiffness,
-      ops.Mass,
-      ops.LumpedMass,
-      ops.Components.Label,
-      ops.Components.Count,
-      m,
-      solve,
-      monitor.Scaled(0.1, 1.0),
-      ops.ConstantHarmonics);
-  }
+  result.Pairs = SolveProblem(mesh, problem, options, monitor, result);
   // The mass is an area (a volume) and scales as s^d, d = 2 (3); M-normalized harmonics as
   // s^(-d/2).
-  const double d = prepared.Volume ? 3.0 : 2.0;
+  const double s = problem.Scale;
+  const double d = problem.Dimension;
   result.Pairs.Eigenvalues /= s * s;
   result.Pairs.Eigenvectors /= std::pow(s, 0.5 * d);
-  result.LumpedMass = ops.LumpedMass * std::pow(s, d);
-  result.InputPointIds = std::move(ops.InputPointIds);
+  result.LumpedMass = problem.Operators.LumpedMass * std::pow(s, d);
+  result.InputPointIds = std::move(problem.Operators.InputPointIds);
   LeaveOutUnrepresented(result, monitor);
   if (options.EigenvaluesOnly)
   {

@@ -121,8 +121,8 @@ public:
  * (the bounding box diagonal of the used points; 1 for 0 or a non-finite value). Dividing the
  * coordinates by it is exact and makes the solve independent of the mesh's units: lambda scales
  * as 1 / s^2, the mass (an area or a volume) as s^d, M-normalized harmonics as s^(-d/2).
- * ComputeBasis and the distributed
- * solver of vtkManifoldHarmonicBasis (vtkManifoldHarmonicsSlepc.cxx) both use it.
+ * ComputeBasis (Problem.h) and the distributed
+ * engine (Distributed/Solve.h) both use it.
  */
 double UnitScale(double diameter);
 

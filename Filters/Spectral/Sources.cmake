@@ -3,12 +3,17 @@
 # core's tests in Testing/Core and the benchmark in bench/).
 #
 #   Basis.h      the one entry point: mesh + options + monitor -> verified basis
+#   Problem.h    its problem stage: checks, unit scale, operators, clamps, memory
 #   Common/      types, defaults, progress and cancellation, threads: what every part uses
 #   Operators/   the discrete Laplacians of each kind of mesh (stiffness, mass, what was left out)
-#   Solver/      the eigensolver behind one interface: factorizations, bands, verification
+#   Solver/      the eigensolver behind one interface: factorizations, bands, verification,
+#                acceptance (accept / relax / fail, signs, Gram check)
 #   Filtering/   transforms, filter gains and the re-injection of what the basis misses
+#   Distributed/ the SLEPc/PETSc engine over MPI (below, built only with SLEPc)
 set(spectral_core_sources
   Basis.cxx
+  Problem.cxx
+  Common/Seams.cxx
   Operators/Laplacian.cxx
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx
@@ -22,6 +27,7 @@ set(spectral_core_sources
   Solver/LanczosKernels.cxx
   Solver/Factorization.cxx
   Solver/Verification.cxx
+  Solver/Acceptance.cxx
   Solver/SupernodalLDLT.cxx
   Solver/BlockProducts.cxx
   Solver/Memory.cxx
@@ -30,11 +36,13 @@ set(spectral_core_sources
   )
 set(spectral_core_headers
   Basis.h
+  Problem.h
   Common/Constants.h
   Common/Defaults.h
   Common/Eigenvalues.h
   Operators/Laplacian.h
   Common/Mesh.h
+  Common/Seams.h
   Common/Monitor.h
   Common/Threads.h
   Operators/Operators.h
@@ -51,10 +59,28 @@ set(spectral_core_headers
   Solver/MassMatrix.h
   Solver/Factorization.h
   Solver/Verification.h
+  Solver/Acceptance.h
   Solver/Diagnostics.h
   Solver/SupernodalLDLT.h
   Solver/BlockProducts.h
   Solver/Memory.h
   Filtering/Transfer.h
   Filtering/Descriptors.h
+  )
+# The distributed engine on SLEPc/PETSc (Distributed/Solve.h), without VTK: built only when the
+# top level finds SLEPc (MANIFOLDHARMONICS_HAS_SLEPC), by the VTK module (Filters/CMakeLists.txt)
+# and by the core's tests (Testing/Core/CMakeLists.txt, TestDistributed under mpiexec).
+set(spectral_distributed_sources
+  Distributed/Petsc.cxx
+  Distributed/Numbering.cxx
+  Distributed/Assembly.cxx
+  Distributed/Pairs.cxx
+  Distributed/Solve.cxx
+  )
+set(spectral_distributed_headers
+  Distributed/Petsc.h
+  Distributed/Numbering.h
+  Distributed/Assembly.h
+  Distributed/Pairs.h
+  Distributed/Solve.h
   )

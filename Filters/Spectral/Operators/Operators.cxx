@@ -514,11 +514,12 @@ double Measure(const TriangleMesh& mesh)
 }
 
 //------------------------------------------------------------------------------
-std::vector<char> BoundaryPoints(const TriangleMesh& mesh)
+std::vector<char> FacetPoints(const TriangleMesh& mesh, bool (*marked)(std::size_t cells))
 {
   // The sorted corners of every facet (edge of a triangle, face of a tetrahedron), padded with
-  // -1 for edges; a facet that appears once is on the boundary.
+  // -1 for edges, once per cell that uses it.
   std::vector<std::array<int, 3>> facets;
+  facets.reserve(static_cast<std::size_t>(3 * mesh.Faces.rows() + 4 * mesh.Tets.rows()));
   for (int f = 0; f < mesh.Faces.rows(); ++f)
   {
     for (int c = 0; c < 3; ++c)
@@ -540,7 +541,7 @@ std::vector<char> BoundaryPoints(const TriangleMesh& mesh)
     }
   }
   std::sort(facets.begin(), facets.end());
-  std::vector<char> boundary(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
+  std::vector<char> points(static_cast<std::size_t>(mesh.Vertices.rows()), 0);
   for (std::size_t i = 0; i < facets.size();)
   {
     std::size_t end = i + 1;
@@ -548,19 +549,31 @@ std::vector<char> BoundaryPoints(const TriangleMesh& mesh)
     {
       ++end;
     }
-    if (end - i == 1)
+    if (marked(end - i))
     {
       for (int id : facets[i])
       {
         if (id >= 0)
         {
-          boundary[static_cast<std::size_t>(id)] = 1;
+          points[static_cast<std::size_t>(id)] = 1;
         }
       }
     }
     i = end;
   }
-  return boundary;
+  return points;
+}
+
+//------------------------------------------------------------------------------
+std::vector<char> BoundaryPoints(const TriangleMesh& mesh)
+{
+  return FacetPoints(mesh, [](std::size_t cells) { return cells == 1; });
+}
+
+//------------------------------------------------------------------------------
+std::vector<char> BorderPoints(const TriangleMesh& mesh)
+{
+  return FacetPoints(mesh, [](std::size_t cells) { return cells != 2; });
 }
 
 //------------------------------------------------------------------------------

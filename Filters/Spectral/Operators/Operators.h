@@ -158,6 +158,17 @@ double Measure(const TriangleMesh& mesh);
  */
 std::vector<char> BoundaryPoints(const TriangleMesh& mesh);
 
+/**
+ * The points of a piece of a mesh that another piece may hold: those of a facet (an edge of a
+ * triangle, a face of a tetrahedron) that not exactly two cells of the piece share (a seam
+ * between pieces, a boundary of the mesh, a non-manifold facet). 1 or 0 per point, as
+ * BoundaryPoints, which marks the facets of one cell only: both count facets in FacetPoints.
+ */
+std::vector<char> BorderPoints(const TriangleMesh& mesh);
+
+/// The points of the facets whose number of cells `marked` accepts (1 or 0 per point).
+std::vector<char> FacetPoints(const TriangleMesh& mesh, bool (*marked)(std::size_t cells));
+
 /// The connected component of each point (points joined by triangle edges).
 struct ComponentLabels
 {

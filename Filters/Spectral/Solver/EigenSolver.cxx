@@ -10,11 +10,14 @@
 //   LanczosKernels.{h,cxx}  M-orthonormalization, Rayleigh-Ritz, in-place block products
 //   Factorization.{h,cxx}   the LDL^T factorizations of L - sigma M, inertia counts
 //   Verification.{h,cxx}    residual tests of bands and of the result
+//   Acceptance.{h,cxx}      accept / relax / fail, the sign rule, the Gram check
 //
-// This file also scales a diagonal mass away before the iteration and normalizes the signs.
+// This file also scales a diagonal mass away before the iteration and normalizes the signs
+// (Acceptance.h, NormalizeSigns).
 #include "Solver/EigenSolver.h"
 #include "Common/Threads.h"
 #include "Solver/Bands.h"
+#include "Solver/Acceptance.h"
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 #include "Solver/MassMatrix.h"
@@ -75,20 +78,6 @@ void ScaleRows(DenseMatrix& Phi, const Vector& scaling)
         Phi.col(k).segment(first, count).array() *= scaling.segment(first, count).array();
       }
     });
-}
-
-/// Make the entry of largest magnitude of every column positive.
-void NormalizeSigns(DenseMatrix& Phi)
-{
-  for (Eigen::Index k = 0; k < Phi.cols(); ++k)
-  {
-    Eigen::Index row = 0;
-    Phi.col(k).cwiseAbs().maxCoeff(&row);
-    if (Phi(row, k) < 0.0)
-    {
-      Phi.col(k) *= -1.0;
-    }
-  }
 }
 
 /**

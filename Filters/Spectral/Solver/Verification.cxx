@@ -1,7 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/Verification.h"
-#include "Common/Constants.h"
 #include "Common/Eigenvalues.h"
 #include "Common/Threads.h"
 #include "Solver/BlockProducts.h"
@@ -17,40 +16,6 @@
 
 namespace spectral
 {
-//------------------------------------------------------------------------------
-double AchievableResidual(double top, double diameter, double& ratio)
-{
-  ratio = top * diameter * diameter / (Pi * Pi);
-  return 10.0 * std::numeric_limits<double>::epsilon() * ratio;
-}
-
-//------------------------------------------------------------------------------
-std::string BadConditioning(double ratio)
-{
-  std::ostringstream why;
-  why << "the operators are badly conditioned (largest / lowest eigenvalue about " << ratio
-      << ", from needle, sliver or tiny triangles)";
-  return why.str();
-}
-
-//------------------------------------------------------------------------------
-std::string RelaxedResidualWarning(double achievable, double tolerance, double ratio)
-{
-  std::ostringstream text;
-  text << "Eigenpairs verified to a relative residual of " << achievable << " instead of "
-       << tolerance << ": " << BadConditioning(ratio)
-       << ". Laplacian = Intrinsic Delaunay or remeshing improves this.";
-  return text.str();
-}
-
-//------------------------------------------------------------------------------
-std::string UnresolvableResidual(double ratio)
-{
-  return BadConditioning(ratio) +
-    " beyond what double precision resolves: remove them (merge close points, e.g. with "
-    "vtkCleanPolyData and a tolerance) or remesh";
-}
-
 //------------------------------------------------------------------------------
 double ResidualReference(const Vector& lambda, double traceRatio)
 {
@@ -111,13 +76,11 @@ int Verify(const Eigen::Ref<const DenseMatrix>& AX,
 }
 
 //------------------------------------------------------------------------------
-double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,
-  const Eigen::Ref<const Vector>& absLx,
-  const Eigen::Ref<const Vector>& absMx,
-  double lambda)
+double ScaledBackwardError(const Eigen::Ref<const Vector>& r,
+  const Eigen::Ref<const Vector>& scale,
+  double largest)
 {
-  const Vector scale = absLx + std::abs(lambda) * absMx;
-  const double floor = BackwardErrorFloor * (scale.size() ? scale.maxCoeff() : 0.0);
+  const double floor = BackwardErrorFloor * largest;
   double worst = 0.0;
   for (Eigen::Index i = 0; i < r.size(); ++i)
   {
@@ -130,6 +93,16 @@ double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,
     }
   }
   return worst;
+}
+
+//------------------------------------------------------------------------------
+double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,
+  const Eigen::Ref<const Vector>& absLx,
+  const Eigen::Ref<const Vector>& absMx,
+  double lambda)
+{
+  const Vector scale = absLx + std::abs(lambda) * absMx;
+  return ScaledBackwardError(r, scale, scale.size() ? scale.maxCoeff() : 0.0);
 }
 
 //------------------------------------------------------------------------------
@@ -162,17 +135,12 @@ void CheckSomeResiduals(const SparseMatrix& L,
     result.MaxBackwardError = std::max(result.MaxBackwardError, backward.maxCoeff());
   }
   result.Seconds.Verification += SecondsSince(start);
-  for (Eigen::Index k = 0; k < residuals.size(); ++k)
+  const PairTolerances tolerances = { options.ResidualTolerance, options.BackwardErrorTolerance };
+  const int k = FirstFailingPair(residuals, backward, tolerances);
+  if (k >= 0)
   {
-    if (!(residuals[k] <= options.ResidualTolerance) &&
-      !(backward[k] <= options.BackwardErrorTolerance))
-    {
-      throw SolverFailure("eigenpair " + std::to_string(first + k) +
-          " (lambda = " + Str(lambda[k]) + ") has relative residual " + Str(residuals[k]) +
-          " and backward error " + Str(backward[k]) + ", above the tolerances " +
-          Str(options.ResidualTolerance) + " and " + Str(options.BackwardErrorTolerance),
-        first + static_cast<int>(k));
-    }
+    throw SolverFailure(
+      PairFailure(first + k, lambda[k], residuals[k], backward[k], tolerances), first + k);
   }
 }
 
@@ -267,6 +235,6 @@ double OrthonormalityError(const DenseMatrix& Phi, const SparseMatrix& M)
     const Eigen::Index count = std::min(block, Phi.cols() - first);
     G.middleCols(first, count).noalias() = Phi.transpose() * (M * Phi.middleCols(first, count));
   }
-  return (G - DenseMatrix::Identity(G.rows(), G.cols())).cwiseAbs().maxCoeff();
+  return GramError(G);
 }
 } // namespace spectral

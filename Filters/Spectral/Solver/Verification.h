@@ -7,7 +7,8 @@
  *
  * Also defines the public measures declared in EigenSolver.h: RelativeResiduals and
  * OrthonormalityError. Both checks measure residuals in the D^-1 norm (D the row sums of M),
- * relative to max(|lambda|, a reference eigenvalue): see RelativeResiduals.
+ * relative to max(|lambda|, a reference eigenvalue): see RelativeResiduals. Which figures are
+ * good enough is decided by Acceptance.h.
  *
  * Used by BlockLanczos (Verify) and SmallestEigenpairs (CheckResiduals); tested by
  * Testing/Core/TestEigenSolver.cxx (TorusContract, RefinedBands; every case through CheckPairs).
@@ -16,6 +17,7 @@
 #define spectral_Verification_h
 
 #include "Common/Mesh.h"
+#include "Solver/Acceptance.h"
 #include "Solver/EigenSolver.h"
 
 #include <string>
@@ -24,36 +26,11 @@
 namespace spectral
 {
 /**
- * The relative residual eigenpairs can meet in double precision: round-off in L h is about
- * eps lambda_max, measured against the lowest frequencies, (pi / d)^2 for a mesh of diameter d;
- * 10 eps lambda_max / (pi / d)^2. Solvers that miss ResidualTolerance on a badly conditioned
- * mesh (needles, slivers, tiny triangles) accept this instead, with RelaxedResidualWarning,
- * up to MeaningfulResidual.
- * \param top lambda_max from Gershgorin's bound on D^-1 L: max_i sum_j |L_ij| / D_i (D the row
- *        sums of M).
- * \param diameter The mesh's diameter, in the units of L and M.
- * \param ratio Set to lambda_max / (pi / d)^2.
- */
-double AchievableResidual(double top, double diameter, double& ratio);
-
-/**
  * The reference eigenvalue of relative residuals: the smallest non-zero |lambda_k| of the pairs
  * (IsZeroEigenvalue against the largest), at least 1e-6 traceRatio.
  * \param traceRatio trace(L) / sum(M): the operator's scale.
  */
 double ResidualReference(const Vector& lambda, double traceRatio);
-
-/// Beyond this relative residual the eigenpairs would be meaningless: an error, not a warning.
-constexpr double MeaningfulResidual = 1e-4;
-
-/// Why a mesh cannot reach the tolerance, for messages: its conditioning `ratio`.
-std::string BadConditioning(double ratio);
-
-/// The warning of a solve verified to `achievable` instead of `tolerance`.
-std::string RelaxedResidualWarning(double achievable, double tolerance, double ratio);
-
-/// What a failure beyond MeaningfulResidual adds to the solver's message.
-std::string UnresolvableResidual(double ratio);
 
 namespace detail
 {
@@ -75,6 +52,15 @@ struct BackwardScale
  * round-off, and the pair is measured against the scale of the whole vector instead.
  */
 constexpr double BackwardErrorFloor = 1e-6;
+
+/**
+ * max_i |r_i| / max(scale_i, BackwardErrorFloor largest), the componentwise backward error of a
+ * residual r against the denominators `scale` = |L| |x| + |lambda| |M| |x|, whose largest over
+ * the whole vector is `largest` (over all processes, for a distributed vector's rows).
+ */
+double ScaledBackwardError(const Eigen::Ref<const Vector>& r,
+  const Eigen::Ref<const Vector>& scale,
+  double largest);
 
 /// The componentwise backward error of column k given its residual r (see BackwardErrors).
 double ComponentwiseBackwardError(const Eigen::Ref<const Vector>& r,

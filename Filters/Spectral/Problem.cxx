@@ -1,0 +1,250 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Problem.h"
+
+#include <cmath>
+
+namespace spectral
+{
+namespace
+{
+//------------------------------------------------------------------------------
+// ClampHarmonics with its warning reported.
+int Clamped(int requested,
+  long long usable,
+  const std::string& what,
+  const Monitor& monitor,
+  BasisResult& result)
+{
+  std::string warning;
+  const int m = ClampHarmonics(requested, usable, what, warning);
+  if (!warning.empty())
+  {
+    Report({ warning }, monitor, result);
+  }
+  return m;
+}
+
+//------------------------------------------------------------------------------
+// Warnings about the components, before the solve: how many zero eigenvalues they give, how to
+// weld unwelded seams, and a request for no more harmonics than components.
+void ReportComponents(int components, int m, const Monitor& monitor, BasisResult& result)
+{
+  if (components <= 1)
+  {
+    return;
+  }
+  const std::string count = std::to_string(components);
+  Report({ "The surface has " + count + " connected components: the first " + count +
+           " eigenvalues are zero, one for each. If they are pieces of one surface whose "
+           "seams are not welded, weld them: WeldSeams on, with a SeamTolerance above the gap "
+           "between the copies of a seam point (or vtkCleanPolyData, Clean in ParaView, with a "
+           "tolerance); leave out small debris with MinimumComponentSize." },
+    monitor,
+    result);
+  if (m <= components)
+  {
+    Report({ "NumberOfHarmonics " + std::to_string(m) + " does not exceed the " + count +
+             " connected components: every harmonic is constant on one component (eigenvalue "
+             "0), so filtering can only move whole components. Ask for more than " +
+             count + " harmonics, or leave out small components with MinimumComponentSize." },
+      monitor,
+      result);
+  }
+}
+
+//------------------------------------------------------------------------------
+// A point cloud: the operators of PointCloudLaplacian, in the same units as a mesh's.
+void CloudProblem(const TriangleMesh& mesh,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result,
+  Problem& problem)
+{
+  if (options.Operators.Laplacian != LaplacianKind::Cotangent ||
+    options.Operators.Boundary != BoundaryCondition::Neumann || options.MinimumComponentSize > 0)
+  {
+    Report({ "A point cloud has its own Laplacian (Sharp and Crane's, on the local Delaunay "
+             "triangulations of its neighbourhoods) with natural conditions: the Laplacian, "
+             "BoundaryCondition and MinimumComponentSize settings do not apply to it." },
+      monitor,
+      result);
+  }
+  // Every point of a cloud is a candidate, and the unit comes from all of them: a coordinate
+  // beyond MaxCoordinate (even of a point left out later) would make the others vanish in it.
+  for (Eigen::Index i = 0; i < mesh.Vertices.rows(); ++i)
+  {
+    CheckCoordinates(mesh.Vertices, i);
+  }
+  problem.Scale = UnitScale(BoundingBoxDiagonal(mesh.Vertices));
+  PointCloudOptions cloudOptions;
+  cloudOptions.NumberOfNeighbors = options.NumberOfNeighbors;
+  cloudOptions.Mass = options.Operators.Mass;
+  problem.Operators =
+    PointCloudLaplacian(Points(mesh.Vertices / problem.Scale), cloudOptions, monitor.Scaled(0.0, 0.1));
+  Report(problem.Operators.Warnings, monitor, result);
+  const Eigen::Index used = problem.Operators.Stiffness.rows();
+  if (!problem.Window)
+  {
+    problem.Harmonics =
+      Clamped(options.NumberOfHarmonics, used, "the point cloud triangulates", monitor, result);
+    if (options.CheckMemory)
+    {
+      CheckMemory(mesh, used, problem.Harmonics, options);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// A surface or a volume: its usable cells, then its operators in units of its size (lambda
+// scales as 1 / s^2, the mass, an area or a volume, as s^d, the M-normalized harmonics as
+// s^(-d/2)).
+void MeshProblem(const TriangleMesh& mesh,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result,
+  Problem& problem)
+{
+  problem.Prepared = LeaveOutSmallComponents(PrepareMesh(mesh), options.MinimumComponentSize);
+  PreparedMesh& prepared = problem.Prepared;
+  Report(PreparationWarnings(prepared), monitor, result);
+  const Eigen::Index used = prepared.Mesh.Vertices.rows();
+  if (used == 0)
+  {
+    throw InvalidInput(prepared.SmallComponents > 0
+        ? "every connected component is smaller than MinimumComponentSize"
+        : prepared.Volume ? "every tetrahedron of the input is degenerate (zero volume)"
+                          : "every triangle of the input is degenerate (zero area)");
+  }
+  problem.Dimension = prepared.Volume ? 3 : 2;
+  if (!problem.Window)
+  {
+    problem.Harmonics = Clamped(options.NumberOfHarmonics,
+      used,
+      prepared.Volume ? "tetrahedra use" : "triangles use",
+      monitor,
+      result);
+    if (options.CheckMemory)
+    {
+      CheckMemory(mesh, used, problem.Harmonics, options);
+    }
+  }
+  problem.Scale = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
+  prepared.Mesh.Vertices /= problem.Scale;
+  problem.Operators = AssembleLaplacian(prepared, options.Operators, monitor);
+  Report(problem.Operators.Warnings, monitor, result);
+}
+
+} // anonymous namespace
+
+//------------------------------------------------------------------------------
+std::pair<double, double> WindowEigenvalues(double lower, double upper, double scale)
+{
+  const double low = lower * scale;
+  const double high = upper * scale;
+  if (!(lower >= 0.0) || !(high > low) || !std::isfinite(high))
+  {
+    throw InvalidInput("the frequency window [" + std::to_string(lower) + ", " +
+      std::to_string(upper) + ") must have 0 <= lower < upper < infinity");
+  }
+  return { low * low, high * high };
+}
+
+//------------------------------------------------------------------------------
+std::string EmptyWindow(double lower, double upper, int below)
+{
+  return "no eigenvalue lies in the frequency window [" + std::to_string(lower) + ", " +
+    std::to_string(upper) + "): " + std::to_string(below) + " lie below it";
+}
+
+//------------------------------------------------------------------------------
+void Report(const std::vector<std::string>& warnings, const Monitor& monitor, BasisResult& result)
+{
+  for (const std::string& text : warnings)
+  {
+    result.Warnings.push_back(text);
+    monitor.Warn(text);
+  }
+}
+
+//------------------------------------------------------------------------------
+int ClampHarmonics(int requested, long long usable, const std::string& what, std::string& warning)
+{
+  warning.clear();
+  if (requested < 1)
+  {
+    throw InvalidInput(
+      "the number of harmonics must be at least 1, not " + std::to_string(requested));
+  }
+  if (requested <= usable)
+  {
+    return requested;
+  }
+  warning = "NumberOfHarmonics " + std::to_string(requested) + " clamped to " +
+    std::to_string(usable) + ", the number of points " + what + ".";
+  return static_cast<int>(usable);
+}
+
+//------------------------------------------------------------------------------
+void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const BasisOptions& options)
+{
+  const MemoryEstimate need = EstimateBasisMemory(static_cast<std::uint64_t>(mesh.Vertices.rows()),
+    static_cast<std::uint64_t>(used),
+    m,
+    options.Solver.BandSize,
+    options.EigenvaluesOnly ? 0 : options.BytesPerValue,
+    !options.EigenvaluesOnly,
+    mesh.IsVolume());
+  const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
+  if (available != 0 && need.Total() > available)
+  {
+    throw InsufficientMemory(need, available, m);
+  }
+}
+
+//------------------------------------------------------------------------------
+Problem PrepareProblem(const TriangleMesh& mesh,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result)
+{
+  Problem problem;
+  problem.Window = options.UpperFrequency > 0.0;
+  if (mesh.IsPointCloud())
+  {
+    CloudProblem(mesh, options, monitor, result, problem);
+  }
+  else
+  {
+    MeshProblem(mesh, options, monitor, result, problem);
+  }
+  const DiscreteLaplacian& ops = problem.Operators;
+  result.BoundaryPoints = ops.BoundaryPoints;
+  if (!problem.Window && ops.Stiffness.rows() < problem.Harmonics)
+  {
+    problem.Harmonics =
+      Clamped(problem.Harmonics, ops.Stiffness.rows(), "inside the boundary", monitor, result);
+  }
+  if (problem.Window)
+  {
+    problem.WindowEigenvalues =
+      WindowEigenvalues(options.LowerFrequency, options.UpperFrequency, problem.Scale);
+  }
+  result.Components = ops.Components.Count;
+  result.ConstantHarmonics = ops.ConstantHarmonics;
+  if (ops.ConstantHarmonics && !problem.Window)
+  {
+    ReportComponents(result.Components, problem.Harmonics, monitor, result);
+  }
+  return problem;
+}
+
+//------------------------------------------------------------------------------
+void ReportComponentsOf(const Problem& problem, int m, const Monitor& monitor, BasisResult& result)
+{
+  if (problem.Operators.ConstantHarmonics)
+  {
+    ReportComponents(problem.Operators.Components.Count, m, monitor, result);
+  }
+}
+} // namespace spectral
