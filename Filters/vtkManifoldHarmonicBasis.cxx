@@ -891,28 +891,28 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   namespace Enums = vtkManifoldHarmonicsEnums;
-  os << indent << "Number Of Harmonics: " << this->NumberOfHarmonics << "\n";
-  os << indent << "Mass Matrix: " << Enums::Name(Enums::MassMatrix, this->MassMatrix) << "\n";
+  const auto onOff = [](bool value) { return value ? "On" : "Off"; };
+  os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << "\n";
+  os << indent << "MassMatrix: " << Enums::Name(Enums::MassMatrix, this->MassMatrix) << "\n";
   os << indent << "Laplacian: " << Enums::Name(Enums::Laplacian, this->Laplacian) << "\n";
   os << indent
-     << "Boundary Condition: " << Enums::Name(Enums::BoundaryCondition, this->BoundaryCondition)
+     << "BoundaryCondition: " << Enums::Name(Enums::BoundaryCondition, this->BoundaryCondition)
      << "\n";
-  os << indent << "Band Size: " << this->BandSize
-     << (this->BandSize == 0 ? " (automatic)\n" : "\n");
+  os << indent << "BandSize: " << this->BandSize << (this->BandSize == 0 ? " (automatic)\n" : "\n");
   os << indent << "Tolerance: " << this->Tolerance << "\n";
-  os << indent << "Max Iterations: " << this->MaxIterations << "\n";
-  os << indent << "Basis Precision: " << Enums::Name(Enums::BasisPrecision, this->BasisPrecision)
+  os << indent << "MaxIterations: " << this->MaxIterations << "\n";
+  os << indent << "BasisPrecision: " << Enums::Name(Enums::BasisPrecision, this->BasisPrecision)
      << "\n";
-  os << indent << "Memory Limit: " << this->MemoryLimit << " MiB"
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB"
      << (this->MemoryLimit > 0.0 ? "\n" : " (the memory the system reports available)\n");
-  os << indent << "Minimum Component Size: " << this->MinimumComponentSize << "\n";
-  os << indent << "Number Of Neighbors: " << this->NumberOfNeighbors << "\n";
-  os << indent << "Eigenvalues Only: " << (this->EigenvaluesOnly ? "on" : "off") << "\n";
-  os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
-  os << indent << "Slepc Partitions: " << this->SlepcPartitions << "\n";
-  os << indent << "Slepc Options: \"" << this->SlepcOptions << "\"\n";
-  os << indent << "Frequency Window: [" << this->FrequencyWindow[0] << ", "
+  os << indent << "MinimumComponentSize: " << this->MinimumComponentSize << "\n";
+  os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
+  os << indent << "EigenvaluesOnly: " << onOff(this->EigenvaluesOnly) << "\n";
+  os << indent << "FrequencyWindow: [" << this->FrequencyWindow[0] << ", "
      << this->FrequencyWindow[1] << ")" << (this->FrequencyWindow[1] > 0.0 ? "\n" : " (off)\n");
-  os << indent << "Weld Seams: " << (this->WeldSeams ? "on" : "off") << "\n";
-  os << indent << "Seam Tolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
+  os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
+  os << indent << "SlepcPartitions: " << this->SlepcPartitions << "\n";
+  os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
+  os << indent << "WeldSeams: " << onOff(this->WeldSeams) << "\n";
+  os << indent << "SeamTolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
 }

@@ -242,6 +242,6 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
   os << indent << "SlepcPartitions: " << this->SlepcPartitions << "\n";
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
-  os << indent << "WeldSeams: " << (this->WeldSeams ? "on" : "off") << "\n";
-  os << indent << "SeamTolerance: " << this->SeamTolerance << "\n";
+  os << indent << "WeldSeams: " << (this->WeldSeams ? "On" : "Off") << "\n";
+  os << indent << "SeamTolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
 }

@@ -253,6 +253,11 @@ void vtkManifoldHarmonicTransform::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "TransformPoints: " << (this->TransformPoints ? "On" : "Off") << "\n";
-  os << indent << "PointDataArraySelection:\n";
-  this->PointDataArraySelection->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "PointDataArraySelection:";
+  for (int a = 0; a < this->PointDataArraySelection->GetNumberOfArrays(); ++a)
+  {
+    const char* name = this->PointDataArraySelection->GetArrayName(a);
+    os << " " << name << (this->PointDataArraySelection->ArrayIsEnabled(name) ? "" : " (off)");
+  }
+  os << "\n";
 }

@@ -53,6 +53,9 @@ int vtkManifoldHarmonicsAlgorithm::RequestData(vtkInformation* vtkNotUsed(reques
   vtkTable* table =
     this->GetNumberOfOutputPorts() > 1 ? vtkTable::GetData(outputVector, 1) : nullptr;
   this->CancelRequested = false;
+  // An abort stops the request it was asked in, not the next one: VTK 9.2's executive leaves the
+  // flag set after an aborted run (later versions clear it), which would empty every later output.
+  this->AbortExecute = 0;
   int status = 0;
   const bool returned = this->Guard(
     [this, input, output, table, &status]() { status = this->Execute(input, output, table); });

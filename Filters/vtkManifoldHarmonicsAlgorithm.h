@@ -18,7 +18,8 @@
  *   fails, with the exception's text in a vtkErrorMacro (DescribeFailure, the one place where
  *   the core's exceptions become messages); after an abort (AbortExecute in a serial run, or the
  *   core's spectral::Cancelled) every output port is empty and the request succeeds, as VTK's
- *   executive has it for an aborted filter.
+ *   executive has it for an aborted filter. An abort stops the request it was asked in: the next
+ *   request starts with AbortExecute cleared (VTK 9.2 leaves it set after an aborted run).
  * - A distributed run (several processes, vtkMultiProcessController) finishes its collective
  *   steps on every process: AbortExecute is honoured in serial runs only (AbortRequested).
  * - The core reports progress, steps and warnings, and polls the abort flag, through the

@@ -147,12 +147,15 @@ DenseMatrix GatherOwned(const Piece& piece,
       H.row(piece.Source[i]) = result.Harmonics.row(static_cast<Eigen::Index>(i));
     }
   }
-  MPI_Allreduce(MPI_IN_PLACE, H.data(), static_cast<int>(H.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(
+    MPI_IN_PLACE, H.data(), static_cast<int>(H.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   copyDifference = 0.0;
   for (std::size_t i = 0; i < piece.Source.size(); ++i)
   {
     copyDifference = std::max(copyDifference,
-      (H.row(piece.Source[i]) - result.Harmonics.row(static_cast<Eigen::Index>(i))).cwiseAbs().maxCoeff());
+      (H.row(piece.Source[i]) - result.Harmonics.row(static_cast<Eigen::Index>(i)))
+        .cwiseAbs()
+        .maxCoeff());
   }
   MPI_Allreduce(MPI_IN_PLACE, &copyDifference, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   return H;
@@ -168,9 +171,11 @@ void MatchesSerial(const TriangleMesh& mesh, const std::string& name)
   DistributedOptions options;
   options.NumberOfHarmonics = Harmonics;
   const DistributedResult result = SolveDistributed(MPI_COMM_WORLD, piece.Mesh, options);
-  Check(result.Eigenvalues.size() == Harmonics, name + ": " + std::to_string(Harmonics) + " eigenvalues");
+  Check(result.Eigenvalues.size() == Harmonics,
+    name + ": " + std::to_string(Harmonics) + " eigenvalues");
   Check(result.GlobalPoints == mesh.Vertices.rows(),
-    name + ": the pieces' seams merged to the mesh's " + std::to_string(mesh.Vertices.rows()) + " points");
+    name + ": the pieces' seams merged to the mesh's " + std::to_string(mesh.Vertices.rows()) +
+      " points");
   const double top = serial.Pairs.Eigenvalues.maxCoeff();
   double worst = 0.0;
   for (int k = 0; k < Harmonics && k < result.Eigenvalues.size(); ++k)
@@ -188,7 +193,8 @@ void MatchesSerial(const TriangleMesh& mesh, const std::string& name)
   const DiscreteLaplacian ops = AssembleLaplacian(whole, LaplacianOptions());
   const double gram = OrthonormalityError(H, ops.Mass);
   CheckBelow(gram, 1e-10, name + ": D-orthonormal in the serial mass");
-  CheckBelow(std::abs(gram - result.OrthonormalityError), 1e-12,
+  CheckBelow(std::abs(gram - result.OrthonormalityError),
+    1e-12,
     name + ": the engine's Gram error is the one measured here");
   CheckBelow(RelativeResiduals(ops.Stiffness, ops.Mass, result.Eigenvalues, H).maxCoeff(),
     EigenOptions().ResidualTolerance,
@@ -215,9 +221,11 @@ void WindowMatchesSerial()
   const TriangleMesh mesh = Icosphere(3);
   const Piece piece = CutPiece(mesh, Rank(), Size());
   // The unit sphere's frequencies sqrt(l (l + 1)): 0, 1.41, 2.45, 3.46, 4.47.
-  for (const std::pair<double, double>& window : { std::make_pair(0.0, 3.0), std::make_pair(2.0, 4.0) })
+  for (const std::pair<double, double>& window :
+    { std::make_pair(0.0, 3.0), std::make_pair(2.0, 4.0) })
   {
-    const std::string name = "window [" + std::to_string(window.first) + ", " + std::to_string(window.second) + ")";
+    const std::string name =
+      "window [" + std::to_string(window.first) + ", " + std::to_string(window.second) + ")";
     BasisOptions serialOptions;
     serialOptions.LowerFrequency = window.first;
     serialOptions.UpperFrequency = window.second;
@@ -226,6 +234,10 @@ void WindowMatchesSerial()
     options.LowerFrequency = window.first;
     options.UpperFrequency = window.second;
     const DistributedResult result = SolveDistributed(MPI_COMM_WORLD, piece.Mesh, options);
+    // The sphere is one component, which the window's harmonics represent whether or not the
+    // window holds its zero eigenvalue: every point keeps its mass (the transform's weights).
+    Check(result.Mass.size() > 0 && result.Mass.minCoeff() > 0.0,
+      name + ": every point of the piece keeps its lumped mass");
     Check(result.Eigenvalues.size() == serial.Pairs.Eigenvalues.size(),
       name + ": as many pairs as the serial window (" + std::to_string(result.Eigenvalues.size()) +
         " vs " + std::to_string(serial.Pairs.Eigenvalues.size()) + ")");
@@ -268,7 +280,8 @@ void OwnersFollowTheOwnerRule()
     holders[static_cast<std::size_t>(source)] = 1;
     first[static_cast<std::size_t>(source)] = Rank();
   }
-  MPI_Allreduce(MPI_IN_PLACE, holders.data(), static_cast<int>(n), MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(
+    MPI_IN_PLACE, holders.data(), static_cast<int>(n), MPI_INT, MPI_SUM, MPI_COMM_WORLD);
   MPI_Allreduce(MPI_IN_PLACE, first.data(), static_cast<int>(n), MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   std::vector<unsigned char> flags(piece.Source.size(), 1);
   for (std::size_t i = 0; i < piece.Source.size(); ++i)
@@ -277,7 +290,8 @@ void OwnersFollowTheOwnerRule()
     flags[i] = Rank() == 0 && holders[j] > 1 ? 0 : 1;
     firstOwned[j] = flags[i] ? Rank() : Size();
   }
-  MPI_Allreduce(MPI_IN_PLACE, firstOwned.data(), static_cast<int>(n), MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(
+    MPI_IN_PLACE, firstOwned.data(), static_cast<int>(n), MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   for (const bool flagged : { false, true })
   {
     DistributedOptions options;
@@ -327,7 +341,12 @@ void OwnersAsTheGatherPath()
   {
     holders[static_cast<std::size_t>(source)] = 1;
   }
-  MPI_Allreduce(MPI_IN_PLACE, holders.data(), static_cast<int>(holders.size()), MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE,
+    holders.data(),
+    static_cast<int>(holders.size()),
+    MPI_INT,
+    MPI_SUM,
+    MPI_COMM_WORLD);
   std::vector<unsigned char> flags(piece.Source.size(), 1);
   for (std::size_t i = 0; i < piece.Source.size(); ++i)
   {
@@ -365,14 +384,29 @@ void OwnersAsTheGatherPath()
   }
   std::vector<double> allXyz(3 * static_cast<std::size_t>(offsets.back()));
   std::vector<unsigned char> allFlags(static_cast<std::size_t>(offsets.back()));
-  MPI_Allgatherv(xyz.data(), 3 * count, MPI_DOUBLE, allXyz.data(), counts3.data(), offsets3.data(), MPI_DOUBLE, MPI_COMM_WORLD);
-  MPI_Allgatherv(flags.data(), count, MPI_UNSIGNED_CHAR, allFlags.data(), counts.data(), offsets.data(), MPI_UNSIGNED_CHAR, MPI_COMM_WORLD);
+  MPI_Allgatherv(xyz.data(),
+    3 * count,
+    MPI_DOUBLE,
+    allXyz.data(),
+    counts3.data(),
+    offsets3.data(),
+    MPI_DOUBLE,
+    MPI_COMM_WORLD);
+  MPI_Allgatherv(flags.data(),
+    count,
+    MPI_UNSIGNED_CHAR,
+    allFlags.data(),
+    counts.data(),
+    offsets.data(),
+    MPI_UNSIGNED_CHAR,
+    MPI_COMM_WORLD);
   const Welding gathered =
     WeldPoints(allXyz.data(), offsets.back(), nullptr, DefaultSeamTolerance, allFlags);
   long long differ = 0;
   for (int i = 0; i < count; ++i)
   {
-    differ += gathered.Owns(offsets[Rank()] + i) == !result.Duplicate[static_cast<std::size_t>(i)] ? 0 : 1;
+    differ +=
+      gathered.Owns(offsets[Rank()] + i) == !result.Duplicate[static_cast<std::size_t>(i)] ? 0 : 1;
   }
   MPI_Allreduce(MPI_IN_PLACE, &differ, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
   Check(gathered.Merged() && static_cast<long long>(gathered.First.size()) == result.GlobalPoints,

@@ -1,13 +1,13 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Distributed/Solve.h"
-#include "Problem.h"
 #include "Common/Eigenvalues.h"
 #include "Distributed/Assembly.h"
 #include "Distributed/Numbering.h"
 #include "Distributed/Pairs.h"
 #include "Distributed/Petsc.h"
 #include "Operators/Operators.h"
+#include "Problem.h"
 #include "Solver/Acceptance.h"
 #include "Solver/Verification.h"
 
@@ -195,7 +195,8 @@ void Engine::Assemble()
   this->Mesh.Vertices /= this->S;
   double measure = Measure(this->Mesh);
   MPI_Allreduce(&measure, &this->TotalMeasure, 1, MPI_DOUBLE, MPI_SUM, this->Comm);
-  distributed::Assemble(this->Comm, this->Mesh, this->Numbers, this->Options.ConsistentMass, this->Ops);
+  distributed::Assemble(
+    this->Comm, this->Mesh, this->Numbers, this->Options.ConsistentMass, this->Ops);
   this->Progress.Report(0.05);
 }
 
@@ -204,7 +205,8 @@ void Engine::Assemble()
 // largest components' first; SLEPc's pairs are kept in their D-orthogonal complement.
 void Engine::ZeroModes()
 {
-  this->Parts = DistributedComponents(this->Comm, this->Mesh, this->Numbers, this->Ops.Lumped.Object);
+  this->Parts =
+    DistributedComponents(this->Comm, this->Mesh, this->Numbers, this->Ops.Lumped.Object);
   if (this->Options.UpperFrequency > 0.0)
   {
     return; // The window decides m and whether the constants are among its pairs (Interval).
@@ -269,7 +271,8 @@ void Engine::WindowInterval()
   const bool fromZero = !(ends.first > 0.0);
   this->Lower = fromZero ? -0.5 * WeylEigenvalue(1.0, measure, this->Dimension) : ends.first;
   this->Upper = ends.second;
-  const PetscInt first = fromZero ? 0 : CountBelow(this->Ops.Q.Object, this->Ops.D.Object, this->Lower);
+  const PetscInt first =
+    fromZero ? 0 : CountBelow(this->Ops.Q.Object, this->Ops.D.Object, this->Lower);
   this->Below = CountBelow(this->Ops.Q.Object, this->Ops.D.Object, this->Upper);
   if (this->Below - first <= 0)
   {
@@ -298,7 +301,8 @@ void Engine::TakeGram()
   if (this->Pending > 0)
   {
     this->Gram.block(0, this->Found - this->Pending, this->Found, this->Pending) =
-      WrittenTimes(this->Harmonics, this->M, this->Found, this->OwnedRows, this->DX.leftCols(this->Pending)) /
+      WrittenTimes(
+        this->Harmonics, this->M, this->Found, this->OwnedRows, this->DX.leftCols(this->Pending)) /
       this->InverseScale;
     this->Pending = 0;
   }
@@ -312,8 +316,8 @@ void Engine::Add(double value)
   const int k = this->Found;
   const int m = this->M;
   this->Lambda[k] = value;
-  const PairError error =
-    this->Checks->NormalizeAndCheck(this->Current.Object, value, this->DX.col(this->Pending).data());
+  const PairError error = this->Checks->NormalizeAndCheck(
+    this->Current.Object, value, this->DX.col(this->Pending).data());
   this->ResidualNorms[k] = error.ResidualNorm;
   this->BackwardErrors[k] = error.Backward;
   this->Result.MaxBackwardError = std::max(this->Result.MaxBackwardError, error.Backward);
@@ -336,7 +340,9 @@ void Engine::Eigensolve(Eigen::Index rows)
 {
   this->Progress.Begin("Eigensolve");
   const int m = this->M;
-  SliceSettings slicing{ this->Options.Tolerance, this->Options.MaxIterations, std::max(1, this->Options.Partitions) };
+  SliceSettings slicing{
+    this->Options.Tolerance, this->Options.MaxIterations, std::max(1, this->Options.Partitions)
+  };
   if (slicing.Partitions > this->Size)
   {
     this->Warn("SlepcPartitions " + std::to_string(slicing.Partitions) + " reduced to the " +
@@ -355,7 +361,8 @@ void Engine::Eigensolve(Eigen::Index rows)
     this->Result.Harmonics = RowMatrix::Zero(rows, m);
     this->Harmonics = this->Result.Harmonics.data();
   }
-  this->Writer = std::make_unique<RowWriter>(this->Ops.Lumped.Object, this->Numbers.Global, this->Prepared.InputPointIds);
+  this->Writer = std::make_unique<RowWriter>(
+    this->Ops.Lumped.Object, this->Numbers.Global, this->Prepared.InputPointIds);
   this->OwnedRows.assign(static_cast<std::size_t>(owned), 0);
   std::vector<int> ownedLabels(static_cast<std::size_t>(owned));
   PetscInt first = 0;
@@ -477,11 +484,10 @@ void Engine::Verify()
     // On badly conditioned operators (debris of a few triangles holding a near-coincident
     // point: masses spanning 1e8, eigenvalues 1e17) the orthogonalization in the D inner
     // product loses what a lower Tolerance cannot bring back.
-    const std::string remedy = achievable > tolerances.Residual
-      ? "; " + BadConditioning(ratio) +
+    const std::string remedy = achievable > tolerances.Residual ? "; " + BadConditioning(ratio) +
         ": merge close points (vtkCleanPolyData, Clean, with a tolerance), or use the Built-in "
         "solver, which solves each connected component on its own"
-      : ": lower Tolerance";
+                                                                : ": lower Tolerance";
     throw std::runtime_error("the eigenvectors are D-orthonormal to " +
       std::to_string(this->Result.OrthonormalityError) + " only" + remedy);
   }
@@ -499,16 +505,17 @@ void Engine::Write(Eigen::Index rows)
   this->Result.Duplicate.assign(static_cast<std::size_t>(rows), 0);
   const double measureScale = std::pow(s, this->Dimension);
   Vector& mass = this->Result.Mass;
-  this->Writer->Write(
-    this->Ops.Lumped.Object, [&](Eigen::Index row, double value) { mass[row] = value * measureScale; });
+  this->Writer->Write(this->Ops.Lumped.Object,
+    [&](Eigen::Index row, double value) { mass[row] = value * measureScale; });
   const std::vector<int>& ids = this->Prepared.InputPointIds;
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
     this->Result.Duplicate[static_cast<std::size_t>(ids[i])] = this->Numbers.Owned[i] ? 0 : 1;
   }
-  // Components that no harmonic represents (more components than m): zero mass as well, as in
-  // the core (Basis.cxx, LeaveOutUnrepresented), so that the filters pass their points through.
-  if (this->Zeros < this->Parts.Count)
+  // Components that no harmonic represents (more components than m, in a basis that starts at
+  // the zero eigenvalues: a window above 0 holds no constant): zero mass as well, as in the core
+  // (Basis.cxx, LeaveOutUnrepresented), so that the filters pass their points through.
+  if (this->Result.FirstIndex == 0 && this->Zeros < this->Parts.Count)
   {
     std::vector<char> represented(static_cast<std::size_t>(this->Parts.Count), 0);
     for (int r = 0; r < this->Zeros; ++r)

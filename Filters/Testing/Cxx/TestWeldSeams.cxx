@@ -467,10 +467,10 @@ bool TestPrintSelf()
   std::ostringstream smoothingText;
   basis->Print(basisText);
   smoothing->Print(smoothingText);
-  bool ok = Check(basisText.str().find("Weld Seams: on") != std::string::npos &&
-      basisText.str().find("Seam Tolerance: 1e-12") != std::string::npos,
+  bool ok = Check(basisText.str().find("WeldSeams: On") != std::string::npos &&
+      basisText.str().find("SeamTolerance: 1e-12") != std::string::npos,
     "the basis prints WeldSeams and SeamTolerance");
-  ok &= Check(smoothingText.str().find("WeldSeams: on") != std::string::npos &&
+  ok &= Check(smoothingText.str().find("WeldSeams: On") != std::string::npos &&
       smoothingText.str().find("SeamTolerance: 1e-12") != std::string::npos,
     "the smoothing prints WeldSeams and SeamTolerance");
   return ok;
