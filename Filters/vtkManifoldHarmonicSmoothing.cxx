@@ -8,16 +8,17 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicBasis.h"
-#include "vtkManifoldHarmonicTransform.h"
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
+#include "vtkManifoldHarmonicsStages.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkPointSet.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSpectralFilter.h"
 
@@ -33,18 +34,86 @@ namespace
 {
 //------------------------------------------------------------------------------
 // Whether a basis with eigenvalues has none but the zero ones of its constant harmonics (one per
-// connected component), by the rule of the spectral filter that ran on it.
-bool OnlyConstantHarmonics(vtkPointSet* basisOutput, vtkSpectralFilter* filter)
+// connected component), by the spectral filter's rule (the scale of the Nyquist frequency).
+bool OnlyConstantHarmonics(const spectral::Vector& lambda, double nyquist)
 {
-  vtkDataArray* lambda =
-    basisOutput->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
-  if (!lambda || lambda->GetNumberOfTuples() == 0)
+  if (lambda.size() == 0)
   {
     return false; // no basis (an empty piece of a distributed run)
   }
-  const double top = lambda->GetTuple1(lambda->GetNumberOfTuples() - 1);
-  const double nyquist = filter->GetNyquistFrequency();
+  const double top = lambda[lambda.size() - 1];
   return spectral::IsZeroEigenvalue(top, nyquist * nyquist) || !std::isfinite(top);
+}
+
+//------------------------------------------------------------------------------
+// What the transform and filter stages need of the basis: collective in a distributed run
+// (every process calls it once, with or without a basis of its own).
+struct Transformed
+{
+  vtkManifoldHarmonicsArrays::Basis Basis;
+  spectral::RowMatrix Coefficients; // of the points, added over the processes
+  spectral::Vector Lambda;
+  double Nyquist = 0.0;
+  std::string Problem;
+};
+
+//------------------------------------------------------------------------------
+// The transform stage of the points of `withBasis` (the internal basis's output) and the
+// Nyquist frequency of the whole mesh, in the order the transform and the spectral filter take
+// them (vtkManifoldHarmonicsStages).
+Transformed TransformPoints(vtkPointSet* withBasis,
+  int threads,
+  vtkMultiProcessController* controller,
+  vtkManifoldHarmonicsArrays::MeshFiguresCache& figures)
+{
+  Transformed out;
+  std::vector<vtkManifoldHarmonicsParallel::NamedMatrix> sums;
+  if (withBasis->GetNumberOfPoints() > 0)
+  {
+    out.Problem = vtkManifoldHarmonicsArrays::FindBasis(withBasis, out.Basis);
+    if (out.Problem.empty())
+    {
+      out.Lambda = out.Basis.EigenvalueVector();
+      sums.push_back({ vtkManifoldHarmonicsNames::Points,
+        vtkManifoldHarmonicsStages::LocalCoefficients(
+          out.Basis, withBasis, withBasis->GetPoints()->GetData(), threads) });
+    }
+  }
+  if (controller && !vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums, out.Lambda))
+  {
+    out.Problem = "Processes disagree on the number of harmonics.";
+  }
+  out.Coefficients = sums.empty() ? spectral::RowMatrix() : sums.front().Values;
+  out.Nyquist =
+    vtkManifoldHarmonicsStages::NyquistFrequency(controller, figures.Of(withBasis).EdgeSums);
+  return out;
+}
+
+//------------------------------------------------------------------------------
+// The low pass at `fraction` of the highest computed frequency (the spectral filter's defaults
+// otherwise), with re-injection: the new coordinates of the points of `withBasis`.
+spectral::RowMatrix LowPass(vtkManifoldHarmonicSmoothing* self,
+  const Transformed& transformed,
+  vtkPointSet* withBasis,
+  double fraction)
+{
+  spectral::FilterParameters given;
+  given.Kind = spectral::FilterKind::LowPass;
+  given.Cutoff = fraction;
+  given.UpperCutoff = spectral::DefaultUpperCutoffFraction;
+  const vtkManifoldHarmonicsStages::Design design = vtkManifoldHarmonicsStages::DesignFilter(
+    given, vtkSpectralFilter::FRACTION_OF_HIGHEST, transformed.Lambda, transformed.Nyquist);
+  const double highFrequencyGain =
+    vtkManifoldHarmonicsStages::ReinjectionGain(self, design, transformed.Nyquist, true);
+  const vtkManifoldHarmonicsArrays::Signal points(withBasis->GetPoints()->GetData());
+  return transformed.Basis.FilterSignal(transformed.Basis.MassVector(),
+    design.Gains,
+    spectral::ConstRowView(transformed.Coefficients.data(),
+      transformed.Coefficients.rows(),
+      transformed.Coefficients.cols()),
+    points.View(),
+    highFrequencyGain,
+    self->GetNumberOfThreads());
 }
 } // anonymous namespace
 
@@ -60,23 +129,14 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , WeldSeams(true)
   , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
-  , Transform(vtkSmartPointer<vtkManifoldHarmonicTransform>::New())
-  , Filter(vtkSmartPointer<vtkSpectralFilter>::New())
+  , MeshFigures(new vtkManifoldHarmonicsArrays::MeshFiguresCache)
 {
-  // The three stages on a shallow copy (made in RequestData, of the input's type), so that the
-  // internal pipeline does not touch the input.
+  // The basis of a shallow copy of the input (made in Execute, of the input's type), kept
+  // between executions; the transform and filter stages run on it directly.
   this->Basis->AddObserver(
     vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
   this->Basis->AddObserver(
     vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
-  this->Filter->AddObserver(
-    vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
-  this->Transform->SetInputConnection(this->Basis->GetOutputPort());
-  this->Filter->SetFilterKindToLowPass();
-  // CutoffFraction is the filter's Cutoff in fractions of the highest computed frequency: one
-  // rule (spectral::ToAbsoluteUnits).
-  this->Filter->SetCutoffUnitsToFractionOfHighest();
-  this->Filter->SetInputConnection(this->Transform->GetOutputPort());
 }
 
 //------------------------------------------------------------------------------
@@ -130,30 +190,37 @@ int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
   {
     return 1; // aborted: the output stays empty
   }
-  this->UpdateFilter(); // collective: before any process returns
-  if (this->AbortRequested())
+  vtkPointSet* withBasis = this->Basis->GetOutput();
+  // Collective in a distributed run: before any process returns.
+  this->SetProgressText("Spectral filter");
+  const Transformed transformed = TransformPoints(
+    withBasis, this->NumberOfThreads, GetDistributedController(), *this->MeshFigures);
+  this->UpdateProgress(0.9);
+  if (!transformed.Problem.empty() || withBasis->GetNumberOfPoints() != input->GetNumberOfPoints())
   {
+    vtkErrorMacro(<< "Manifold harmonic smoothing failed"
+                  << (transformed.Problem.empty() ? " (see the errors above)."
+                                                  : ": " + transformed.Problem));
+    return 0;
+  }
+  if (this->AbortRequested() || input->GetNumberOfPoints() == 0)
+  {
+    output->ShallowCopy(input);
     return 1;
   }
-  if (OnlyConstantHarmonics(this->Basis->GetOutput(), this->Filter))
+  if (OnlyConstantHarmonics(transformed.Lambda, transformed.Nyquist))
   {
     vtkErrorMacro(<< "The " << this->NumberOfHarmonics
                   << " harmonic(s) are all constant (one per connected component of the surface, "
                      "frequency 0): there is nothing to smooth. Raise NumberOfHarmonics.");
     return 0;
   }
+  const spectral::RowMatrix smoothed = LowPass(this, transformed, withBasis, this->CutoffFraction);
   output->ShallowCopy(input);
-  vtkPointSet* filtered = this->Filter->GetOutput();
-  if (filtered->GetNumberOfPoints() != input->GetNumberOfPoints())
-  {
-    if (input->GetNumberOfPoints() == 0)
-    {
-      return 1;
-    }
-    vtkErrorMacro(<< "Manifold harmonic smoothing failed (see the errors above).");
-    return 0;
-  }
-  output->SetPoints(filtered->GetPoints());
+  vtkNew<vtkPoints> points;
+  points->SetData(vtkManifoldHarmonicsArrays::NewArrayLike(
+    input->GetPoints()->GetData(), smoothed, input->GetPoints()->GetData()->GetName()));
+  output->SetPoints(points);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -201,18 +268,6 @@ bool vtkManifoldHarmonicSmoothing::UpdateBasis()
     return false;
   }
   return true;
-}
-
-//------------------------------------------------------------------------------
-void vtkManifoldHarmonicSmoothing::UpdateFilter()
-{
-  this->Transform->SetNumberOfThreads(this->NumberOfThreads);
-  this->Transform->Update();
-  this->UpdateProgress(0.9);
-  this->SetProgressText("Spectral filter");
-  this->Filter->SetNumberOfThreads(this->NumberOfThreads);
-  this->Filter->SetCutoff(this->CutoffFraction);
-  this->Filter->Update();
 }
 
 //------------------------------------------------------------------------------

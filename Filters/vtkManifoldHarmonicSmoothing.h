@@ -4,9 +4,11 @@
  * @class vtkManifoldHarmonicSmoothing
  * @brief One-step low-pass smoothing of a surface in its manifold harmonic basis.
  *
- * vtkManifoldHarmonicSmoothing runs vtkManifoldHarmonicBasis, vtkManifoldHarmonicTransform and a
- * LOW_PASS vtkSpectralFilter on its input and returns the input with the smoothed point
- * coordinates: the coordinates keep their harmonics below the cutoff frequency and lose those
+ * vtkManifoldHarmonicSmoothing computes the basis of its input with an internal
+ * vtkManifoldHarmonicBasis, kept between executions, and runs on it the stages of
+ * vtkManifoldHarmonicTransform and of a LOW_PASS vtkSpectralFilter (the same functions,
+ * vtkManifoldHarmonicsStages.h) on the point coordinates; it returns the input with the smoothed
+ * point coordinates: the coordinates keep their harmonics below the cutoff frequency and lose those
  * above (B. Vallet and B. Levy, "Spectral Geometry Processing with Manifold Harmonics", Computer
  * Graphics Forum 27(2), 2008, section 5).
  *
@@ -66,11 +68,14 @@
 #include "vtkSmartPointer.h"            // For the internal pipeline
 #include "vtkWeakPointer.h"             // For the internal pipeline
 
+#include <memory> // For the mesh figures
 #include <string> // For SlepcOptions
 
-class vtkManifoldHarmonicTransform;
 class vtkPointSet;
-class vtkSpectralFilter;
+namespace vtkManifoldHarmonicsArrays
+{
+class MeshFiguresCache;
+}
 
 class VTKMANIFOLDHARMONICS_EXPORT vtkManifoldHarmonicSmoothing
   : public vtkManifoldHarmonicsAlgorithm
@@ -212,8 +217,6 @@ private:
   void UpdateBasisInput(vtkPointSet* input);
   /// The internal basis with this filter's settings, updated. \return false after an abort.
   bool UpdateBasis();
-  /// The internal transform and spectral filter, updated (collective in a distributed run).
-  void UpdateFilter();
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
   /// The warnings of the internal stages, as this filter's: its observers see them (and the
@@ -225,8 +228,8 @@ private:
   vtkWeakPointer<vtkPointSet> InputData; // the input object of that copy
   vtkMTimeType InputTime = 0;            // and its MTime then
   vtkSmartPointer<vtkManifoldHarmonicBasis> Basis;
-  vtkSmartPointer<vtkManifoldHarmonicTransform> Transform;
-  vtkSmartPointer<vtkSpectralFilter> Filter;
+  // The edge sums of the basis's output (the Nyquist frequency), once per basis.
+  std::unique_ptr<vtkManifoldHarmonicsArrays::MeshFiguresCache> MeshFigures;
 
   vtkManifoldHarmonicSmoothing(const vtkManifoldHarmonicSmoothing&) = delete;
   void operator=(const vtkManifoldHarmonicSmoothing&) = delete;

@@ -11,6 +11,7 @@
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
+#include "vtkManifoldHarmonicsStages.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -92,16 +93,14 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   }
   const std::vector<NamedSignal> signals = SelectSignals(self, input);
   self->SetProgressText("Transform");
-  const spectral::Vector mass =
-    basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(input));
   lambda = basis.EigenvalueVector();
   // A distributed run finishes (its sums are collective); a serial one stops at an abort.
   for (std::size_t s = 0; s < signals.size() && !self->AbortRequested(); ++s)
   {
-    const vtkManifoldHarmonicsArrays::Signal signal(signals[s].second);
     coefficients.push_back(
       { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
-        basis.ForwardTransform(mass, signal.View(), self->GetNumberOfThreads()) });
+        vtkManifoldHarmonicsStages::LocalCoefficients(
+          basis, input, signals[s].second, self->GetNumberOfThreads()) });
     if (!coefficients.back().Values.allFinite())
     {
       // Points used by no triangle add nothing: a NaN or infinity on the surface did this.

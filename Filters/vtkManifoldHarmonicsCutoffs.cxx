@@ -101,14 +101,14 @@ struct SpectrumEnds
 /// Warns if the cutoff `name`, `value` in the filter's units and `frequency` in absolute ones,
 /// lies below the first non-zero frequency or above the highest computed one (or, as a harmonic
 /// index, beyond the last harmonic), with what the gains do (`consequence`).
-void WarnIfOutside(vtkSpectralFilter* self,
+void WarnIfOutside(vtkObject* self,
+  int units,
   const char* name,
   double value,
   double frequency,
   const SpectrumEnds& ends,
   const std::string& consequence)
 {
-  const int units = self->GetCutoffUnits();
   std::ostringstream where;
   if (frequency < ends.First)
   {
@@ -137,7 +137,7 @@ void WarnIfOutside(vtkSpectralFilter* self,
 /// Constant harmonics are meant to get F(0); a rounding-sized frequency that crosses a step
 /// gives them another gain, which scales their components towards the origin: a warning.
 /// `constant` marks them, `largestZero` is their largest eigenvalue.
-void WarnAboutConstantHarmonics(vtkSpectralFilter* self,
+void WarnAboutConstantHarmonics(vtkObject* self,
   const spectral::FilterParameters& absolute,
   const spectral::Vector& gains,
   const std::vector<bool>& constant,
@@ -222,7 +222,9 @@ void SliderRanges(const spectral::Vector& lambda,
 }
 
 //------------------------------------------------------------------------------
-void WarnAboutCutoffs(vtkSpectralFilter* self,
+void WarnAboutCutoffs(vtkObject* self,
+  int units,
+  bool reinject,
   const spectral::FilterParameters& given,
   const spectral::FilterParameters& absolute,
   const spectral::Vector& lambda,
@@ -262,12 +264,12 @@ void WarnAboutCutoffs(vtkSpectralFilter* self,
   const SpectrumEnds ends = {
     std::sqrt(FirstNonZeroEigenvalue(lambda, nyquist)), spectral::HighestFrequency(lambda), m - 1
   };
-  const std::string consequence =
-    Consequence(gains, constant, highFrequencyGain, self->GetReinjectHighFrequencies());
-  WarnIfOutside(self, "Cutoff", given.Cutoff, absolute.Cutoff, ends, consequence);
+  const std::string consequence = Consequence(gains, constant, highFrequencyGain, reinject);
+  WarnIfOutside(self, units, "Cutoff", given.Cutoff, absolute.Cutoff, ends, consequence);
   if (band)
   {
-    WarnIfOutside(self, "UpperCutoff", given.UpperCutoff, absolute.UpperCutoff, ends, consequence);
+    WarnIfOutside(
+      self, units, "UpperCutoff", given.UpperCutoff, absolute.UpperCutoff, ends, consequence);
   }
 }
 } // namespace vtkManifoldHarmonicsCutoffs

@@ -16,7 +16,7 @@
 
 #include "Spectral/Filtering/Transfer.h"
 
-class vtkSpectralFilter;
+class vtkObject;
 
 namespace vtkManifoldHarmonicsCutoffs
 {
@@ -39,8 +39,11 @@ void SliderRanges(const spectral::Vector& lambda,
 /// constant harmonics only, constant harmonics whose rounding-sized frequencies straddle the
 /// cutoff (their components move towards the origin), and a cutoff below the first non-zero
 /// frequency or above the highest computed one. given: the parameters in the filter's units;
-/// absolute: the same in frequencies.
-void WarnAboutCutoffs(vtkSpectralFilter* self,
+/// absolute: the same in frequencies; units: vtkSpectralFilter::CutoffUnitsType of `given`;
+/// reinject: whether the filter re-injects the high frequencies. The warnings are `self`'s.
+void WarnAboutCutoffs(vtkObject* self,
+  int units,
+  bool reinject,
   const spectral::FilterParameters& given,
   const spectral::FilterParameters& absolute,
   const spectral::Vector& lambda,

@@ -10,6 +10,7 @@
 #include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
+#include "vtkManifoldHarmonicsStages.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -109,32 +110,6 @@ spectral::FilterParameters Parameters(vtkSpectralFilter* self)
   return parameters;
 }
 
-/// The Nyquist frequency (spectral::NyquistFrequency) of the whole mesh from the
-/// vtkManifoldHarmonicsArrays::EdgeSums of this process (ghost cells left out): in a distributed
-/// run the sums of all processes are added up (collective).
-/// \return 0 when the mesh (on every process) has no triangle of non-zero, finite size.
-double NyquistFrequency(vtkMultiProcessController* controller, std::vector<double> sums)
-{
-  if (controller)
-  {
-    vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums);
-  }
-  return spectral::NyquistFrequency(sums[0], sums[1]);
-}
-
-/// Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
-double HighFrequencyGain(const spectral::FilterParameters& parameters,
-  double nyquist,
-  const spectral::Vector& lambda)
-{
-  if (nyquist <= 0.0)
-  {
-    throw spectral::InvalidInput(
-      "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
-  }
-  return spectral::MeanGain(parameters, spectral::HighestFrequency(lambda), nyquist);
-}
-
 /// The spectrum table: Index, Frequency, Gain, then the magnitudes before and after filtering.
 void FillSpectrum(const spectral::Vector& lambda,
   const spectral::Vector& gains,
@@ -197,52 +172,6 @@ void WriteSignal(const FilterJob& job,
       filteredCoefficients, job.Coefficients->GetName()));
   }
 }
-/// The filter designed for a basis: its eigenvalues, the parameters as given and in
-/// frequencies, and the gain of each harmonic.
-struct Design
-{
-  spectral::Vector Lambda;
-  double FirstNonZero = 0.0;
-  spectral::FilterParameters Given;
-  spectral::FilterParameters Parameters;
-  spectral::Vector Gains;
-};
-
-/// The filter's parameters for the eigenvalues `lambda` in frequencies (validated in the
-/// filter's units first) and their gains; the slider ranges of these eigenvalues.
-Design DesignFilter(vtkSpectralFilter* self,
-  const spectral::Vector& lambda,
-  double nyquist,
-  double frequencyRange[2],
-  double timeRange[2])
-{
-  Design design;
-  design.Lambda = lambda;
-  design.FirstNonZero = vtkManifoldHarmonicsCutoffs::FirstNonZeroEigenvalue(lambda, nyquist);
-  vtkManifoldHarmonicsCutoffs::SliderRanges(
-    lambda, design.FirstNonZero, self->GetCutoffUnits(), frequencyRange, timeRange);
-  design.Given = Parameters(self);
-  design.Parameters = spectral::ToAbsoluteUnits(design.Given,
-    vtkManifoldHarmonicsEnums::To(
-      vtkManifoldHarmonicsEnums::CutoffUnits, self->GetCutoffUnits(), "CutoffUnits"),
-    lambda,
-    design.FirstNonZero);
-  design.Gains = spectral::Gains(design.Parameters, lambda);
-  return design;
-}
-
-/// The gain of the re-injected high frequencies (0 without re-injection), after the warnings
-/// about cutoffs outside the computed spectrum.
-double ReinjectionGain(vtkSpectralFilter* self, const Design& design, double nyquist)
-{
-  const double highFrequencyGain = self->GetReinjectHighFrequencies()
-    ? HighFrequencyGain(design.Parameters, nyquist, design.Lambda)
-    : 0.0;
-  vtkManifoldHarmonicsCutoffs::WarnAboutCutoffs(
-    self, design.Given, design.Parameters, design.Lambda, nyquist, design.Gains, highFrequencyGain);
-  return highFrequencyGain;
-}
-
 /// Filters each job's signal and writes it onto the output, until an abort.
 void FilterSignals(vtkSpectralFilter* self,
   const vtkManifoldHarmonicsArrays::Basis& basis,
@@ -394,7 +323,8 @@ int vtkSpectralFilter::Execute(vtkPointSet* input, vtkPointSet* output, vtkTable
   // Collective in a distributed run, so before any return: the Nyquist frequency, for the
   // re-injection and for telling zero eigenvalues in the slider ranges.
   vtkMultiProcessController* controller = GetDistributedController();
-  this->NyquistFrequency = ::NyquistFrequency(controller, this->MeshFigures->Of(input).EdgeSums);
+  this->NyquistFrequency =
+    vtkManifoldHarmonicsStages::NyquistFrequency(controller, this->MeshFigures->Of(input).EdgeSums);
   if (input->GetNumberOfPoints() == 0)
   {
     if (!controller)
@@ -413,8 +343,14 @@ int vtkSpectralFilter::Execute(vtkPointSet* input, vtkPointSet* output, vtkTable
     return 0;
   }
   this->SetProgressText("Spectral filter");
-  const Design design = DesignFilter(
-    this, basis.EigenvalueVector(), this->NyquistFrequency, this->FrequencyRange, this->TimeRange);
+  const spectral::Vector lambda = basis.EigenvalueVector();
+  vtkManifoldHarmonicsCutoffs::SliderRanges(lambda,
+    vtkManifoldHarmonicsCutoffs::FirstNonZeroEigenvalue(lambda, this->NyquistFrequency),
+    this->CutoffUnits,
+    this->FrequencyRange,
+    this->TimeRange);
+  const vtkManifoldHarmonicsStages::Design design = vtkManifoldHarmonicsStages::DesignFilter(
+    Parameters(this), this->CutoffUnits, lambda, this->NyquistFrequency);
   if (!controller || controller->GetLocalProcessId() == 0)
   {
     FillSpectrum(design.Lambda, design.Gains, jobs, spectrum);
@@ -428,8 +364,13 @@ int vtkSpectralFilter::Execute(vtkPointSet* input, vtkPointSet* output, vtkTable
   vtkDebugMacro(<< "FilterKind " << this->FilterKind << ", CutoffUnits " << this->CutoffUnits
                 << ", Cutoff " << this->Cutoff << " (frequency " << design.Parameters.Cutoff
                 << ")");
-  FilterSignals(
-    this, basis, design.Gains, ReinjectionGain(this, design, this->NyquistFrequency), jobs, output);
+  FilterSignals(this,
+    basis,
+    design.Gains,
+    vtkManifoldHarmonicsStages::ReinjectionGain(
+      this, design, this->NyquistFrequency, this->ReinjectHighFrequencies),
+    jobs,
+    output);
   return 1;
 }
 

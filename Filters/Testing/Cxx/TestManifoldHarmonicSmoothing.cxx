@@ -365,6 +365,28 @@ bool TestOnlyConstantHarmonics(vtkPolyData* input)
 }
 
 //------------------------------------------------------------------------------
+// The smoothing runs the transform and filter stages itself (vtkManifoldHarmonicsStages), not
+// through internal filters: the warning about a cutoff below the first non-zero frequency is the
+// smoothing's own, named for it, not a vtkSpectralFilter's passed on.
+bool TestCutoffWarningIsOwn(vtkPolyData* input)
+{
+  vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
+  smoothing->SetInputData(input);
+  smoothing->SetNumberOfHarmonics(20);
+  smoothing->SetCutoffFraction(0.001);
+  const ManifoldHarmonicsTest::Messages messages(smoothing);
+  smoothing->Update();
+  const std::string warning = messages->GetWarningMessage();
+  std::cout << "Cutoff warning: " << warning << std::endl;
+  return Check(messages->GetWarning() &&
+      warning.find("below the first non-zero frequency") != std::string::npos &&
+      warning.find("vtkManifoldHarmonicSmoothing") != std::string::npos &&
+      warning.find("vtkSpectralFilter") == std::string::npos &&
+      smoothing->GetOutput()->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "the cutoff warning is the smoothing's, and the smoothing runs");
+}
+
+//------------------------------------------------------------------------------
 // Input without polygons (a polyline): passed on unchanged with a warning of the smoothing's own,
 // not errors of its internal transform and filter.
 bool TestNoPolygons()
@@ -405,5 +427,6 @@ int TestManifoldHarmonicSmoothing(int argc, char* argv[])
       { "ReuseProgressAbort", [] { return TestReuseProgressAbort(NoisySphere()); } },
       { "OnlyConstantHarmonics", [] { return TestOnlyConstantHarmonics(NoisySphere()); } },
       { "NoPolygons", TestNoPolygons },
+      { "CutoffWarningIsOwn", [] { return TestCutoffWarningIsOwn(NoisySphere()); } },
     });
 }
