@@ -65,8 +65,8 @@
 #include "vtkManifoldHarmonicBasis.h" // For BasisPrecisionType, DEFAULT_NUMBER_OF_HARMONICS
 #include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
-#include "vtkSmartPointer.h"            // For the internal pipeline
-#include "vtkWeakPointer.h"             // For the internal pipeline
+#include "vtkSmartPointer.h"            // For the internal basis
+#include "vtkWeakPointer.h"             // For the internal basis
 
 #include <memory> // For the mesh figures
 #include <string> // For SlepcOptions
@@ -223,7 +223,7 @@ private:
   /// output window shows them once, as it would the stage's).
   void ForwardWarning(vtkObject* caller, unsigned long event, void* data);
 
-  // The internal pipeline, kept between executions so that a new cutoff reuses the basis.
+  // The internal basis, kept between executions so that a new cutoff reuses it.
   vtkSmartPointer<vtkPointSet> Input;    // shallow copy of the input, replaced when it changes
   vtkWeakPointer<vtkPointSet> InputData; // the input object of that copy
   vtkMTimeType InputTime = 0;            // and its MTime then
