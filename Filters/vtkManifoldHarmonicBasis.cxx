@@ -496,12 +496,14 @@ bool SlepcPiecesUsable(vtkManifoldHarmonicBasis* self,
 }
 
 //------------------------------------------------------------------------------
-// The settings of the filter as the SLEPc solver's, its progress, steps, warnings and abort
-// flag through the filter (progress [0, 0.95]; writing the arrays is the rest).
+// The settings of the filter as the SLEPc solver's, with the filter's monitor (its progress,
+// steps, warnings and abort flag).
 vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self,
-  vtkPointSet* input)
+  vtkPointSet* input,
+  const spectral::Monitor& monitor)
 {
   vtkManifoldHarmonicsSlepc::Settings settings;
+  static_cast<spectral::Monitor&>(settings) = monitor;
   settings.NumberOfHarmonics = self->GetNumberOfHarmonics();
   settings.ConsistentMass = self->GetMassMatrix() == vtkManifoldHarmonicBasis::CONSISTENT;
   settings.Partitions = self->GetSlepcPartitions();
@@ -518,10 +520,6 @@ vtkManifoldHarmonicsSlepc::Settings SlepcSettings(vtkManifoldHarmonicBasis* self
   {
     settings.OwnedPoints.push_back(ownedPoints[i] > 0.0 ? 1 : 0);
   }
-  settings.Progress = [self](double fraction) { self->UpdateProgress(0.95 * fraction); };
-  settings.Stage = [self](const char* stage) { self->SetProgressText(stage); };
-  settings.Cancelled = [self]() { return self->GetAbortExecute() != 0; };
-  settings.Warning = [self](const std::string& text) { vtkWarningWithObjectMacro(self, << text); };
   return settings;
 }
 
@@ -532,10 +530,11 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
   vtkMultiProcessController* controller,
   const spectral::TriangleMesh& mesh,
   vtkPointSet* input,
-  vtkPointSet* output)
+  vtkPointSet* output,
+  const spectral::Monitor& monitor)
 {
   const vtkManifoldHarmonicsSlepc::Result result =
-    vtkManifoldHarmonicsSlepc::Solve(controller, mesh, SlepcSettings(self, input));
+    vtkManifoldHarmonicsSlepc::Solve(controller, mesh, SlepcSettings(self, input, monitor));
   AddPieceArrays(
     output, input, result.Rows, self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
   for (const auto& figure :
@@ -781,8 +780,12 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   {
     return 0;
   }
-  return this->Guard([&]() { ::SolveWithSlepc(this, controller, cells.Mesh, input, output); }) ? 1
-                                                                                               : 0;
+  // Progress [0, 0.95]: writing the arrays is the rest.
+  const spectral::Monitor monitor = this->MakeMonitor(0.95);
+  return this->Guard(
+           [&]() { ::SolveWithSlepc(this, controller, cells.Mesh, input, output, monitor); })
+    ? 1
+    : 0;
 #else
   (void)input;
   (void)output;

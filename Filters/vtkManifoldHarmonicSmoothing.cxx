@@ -75,8 +75,10 @@ Transformed TransformPoints(vtkPointSet* withBasis,
     {
       out.Lambda = out.Basis.EigenvalueVector();
       sums.push_back({ vtkManifoldHarmonicsNames::Points,
-        vtkManifoldHarmonicsStages::LocalCoefficients(
-          out.Basis, withBasis, withBasis->GetPoints()->GetData(), threads) });
+        vtkManifoldHarmonicsStages::LocalCoefficients(out.Basis,
+          vtkManifoldHarmonicsStages::OwnedMass(out.Basis, withBasis),
+          withBasis->GetPoints()->GetData(),
+          threads) });
     }
   }
   if (controller && !vtkManifoldHarmonicsParallel::SumOverRanks(controller, sums, out.Lambda))

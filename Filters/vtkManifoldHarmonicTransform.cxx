@@ -8,7 +8,6 @@
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkManifoldHarmonicsArrays.h"
-#include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsStages.h"
@@ -94,13 +93,14 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
   const std::vector<NamedSignal> signals = SelectSignals(self, input);
   self->SetProgressText("Transform");
   lambda = basis.EigenvalueVector();
+  const spectral::Vector mass = vtkManifoldHarmonicsStages::OwnedMass(basis, input);
   // A distributed run finishes (its sums are collective); a serial one stops at an abort.
   for (std::size_t s = 0; s < signals.size() && !self->AbortRequested(); ++s)
   {
     coefficients.push_back(
       { Names::Concatenate(signals[s].first.c_str(), Names::CoefficientsSuffix),
         vtkManifoldHarmonicsStages::LocalCoefficients(
-          basis, input, signals[s].second, self->GetNumberOfThreads()) });
+          basis, mass, signals[s].second, self->GetNumberOfThreads()) });
     if (!coefficients.back().Values.allFinite())
     {
       // Points used by no triangle add nothing: a NaN or infinity on the surface did this.

@@ -12,14 +12,19 @@
 namespace vtkManifoldHarmonicsStages
 {
 //------------------------------------------------------------------------------
+spectral::Vector OwnedMass(const vtkManifoldHarmonicsArrays::Basis& basis, vtkPointSet* withBasis)
+{
+  return basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(withBasis));
+}
+
+//------------------------------------------------------------------------------
 spectral::RowMatrix LocalCoefficients(const vtkManifoldHarmonicsArrays::Basis& basis,
-  vtkPointSet* withBasis,
+  const spectral::Vector& ownedMass,
   vtkDataArray* signal,
   int threads)
 {
-  const spectral::Vector mass =
-    basis.MassVector().cwiseProduct(vtkManifoldHarmonicsGhosts::OwnedPoints(withBasis));
-  return basis.ForwardTransform(mass, vtkManifoldHarmonicsArrays::Signal(signal).View(), threads);
+  return basis.ForwardTransform(
+    ownedMass, vtkManifoldHarmonicsArrays::Signal(signal).View(), threads);
 }
 
 //------------------------------------------------------------------------------

@@ -24,13 +24,18 @@ class vtkPointSet;
 namespace vtkManifoldHarmonicsStages
 {
 /**
- * The transform of `signal` (n tuples of c components) in the basis that `withBasis` carries:
- * m by c coefficients summed over the points this process owns (a copy flagged DUPLICATEPOINT
- * counts zero times, vtkManifoldHarmonicsGhosts::OwnedPoints): added over the processes of a
- * distributed run they are the whole mesh's.
+ * The transform's weights on this process: the lumped mass of the points it owns, 0 on a copy
+ * flagged DUPLICATEPOINT (vtkManifoldHarmonicsGhosts::OwnedPoints of `withBasis`).
+ */
+spectral::Vector OwnedMass(const vtkManifoldHarmonicsArrays::Basis& basis, vtkPointSet* withBasis);
+
+/**
+ * The transform of `signal` (n tuples of c components) in `basis` with the weights `ownedMass`
+ * (OwnedMass): m by c coefficients summed over the points this process owns; added over the
+ * processes of a distributed run they are the whole mesh's.
  */
 spectral::RowMatrix LocalCoefficients(const vtkManifoldHarmonicsArrays::Basis& basis,
-  vtkPointSet* withBasis,
+  const spectral::Vector& ownedMass,
   vtkDataArray* signal,
   int threads);
 
