@@ -355,8 +355,22 @@ static vtkIdType NonManifoldEdges(const spectral::Triangles& faces)
 }
 
 //------------------------------------------------------------------------------
+bool IsSpectrumOnly(vtkDataSet* input)
+{
+  return !input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Harmonics) &&
+    input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass) &&
+    input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
+}
+
+//------------------------------------------------------------------------------
 std::string MissingBasisAdvice(vtkDataSet* input)
 {
+  if (IsSpectrumOnly(input))
+  {
+    return "the basis upstream was computed with EigenvaluesOnly, which gives the eigenvalues "
+           "and the mass without the harmonics: turn EigenvaluesOnly off in "
+           "ManifoldHarmonicBasis (vtkManifoldHarmonicBasis).";
+  }
   vtkPointSet* points = vtkPointSet::SafeDownCast(input);
   if (points && points->GetNumberOfPoints() > 0 && !ToCoreMesh(points).HasCells())
   {

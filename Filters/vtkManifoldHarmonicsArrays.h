@@ -126,9 +126,16 @@ void FillSpectrum(vtkTable* table,
   const std::vector<SpectrumSignal>& signals);
 
 /**
+ * Whether the input holds a spectrum without harmonics (vtkManifoldHarmonicBasis with
+ * EigenvaluesOnly): the eigenvalues and the mass, no harmonics array.
+ */
+bool IsSpectrumOnly(vtkDataSet* input);
+
+/**
  * The message of a filter that needs the basis arrays and did not find them: why they are
  * missing (an input without polygons or volume cells, which vtkManifoldHarmonicBasis passes
- * through without a basis) or which filter to run upstream.
+ * through without a basis; a spectrum computed with EigenvaluesOnly, IsSpectrumOnly) or which
+ * filter to run upstream.
  */
 std::string MissingBasisAdvice(vtkDataSet* input);
 

@@ -207,15 +207,6 @@ std::string CheckTimes(vtkSpectralDescriptors* self)
   return problem.str();
 }
 
-/// Whether the input holds a spectrum without harmonics (vtkManifoldHarmonicBasis with
-/// EigenvaluesOnly): eigenvalues and mass, no harmonics array.
-bool SpectrumOnly(vtkPointSet* input)
-{
-  return !input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Harmonics) &&
-    input->GetPointData()->GetArray(vtkManifoldHarmonicsNames::Mass) &&
-    input->GetFieldData()->GetArray(vtkManifoldHarmonicsNames::Eigenvalues);
-}
-
 /// The ShapeDNA table: Index, Eigenvalue, ScaledEigenvalue = lambda |Omega|^(2/d), with the
 /// measure (area or volume) and the dimension d of the input (2, or 3 for a volume).
 void FillShapeDNA(const spectral::Vector& lambda, double measure, int dimension, vtkTable* table)
@@ -599,7 +590,7 @@ int vtkSpectralDescriptors::Execute(vtkPointSet* input, vtkPointSet* output, vtk
     output->ShallowCopy(input);
     return 1;
   }
-  if (SpectrumOnly(input))
+  if (vtkManifoldHarmonicsArrays::IsSpectrumOnly(input))
   {
     return this->ShapeDNAOnly(input, sums[0], Dimension(sums), output, table);
   }

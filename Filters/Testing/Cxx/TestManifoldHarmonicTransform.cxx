@@ -284,6 +284,14 @@ bool TestErrors()
   ok &= ExpectError(
     noEigenvalues, vtkManifoldHarmonicBasis::EigenvaluesArrayName(), "ManifoldHarmonicBasis");
 
+  // A spectrum without harmonics (EigenvaluesOnly): the error names the setting to turn off.
+  vtkNew<vtkManifoldHarmonicBasis> spectrumOnly;
+  spectrumOnly->SetInputConnection(sphere->GetOutputPort());
+  spectrumOnly->SetNumberOfHarmonics(5);
+  spectrumOnly->EigenvaluesOnlyOn();
+  spectrumOnly->Update();
+  ok &= ExpectError(spectrumOnly->GetOutput(), "EigenvaluesOnly", "turn EigenvaluesOnly off");
+
   // Eigenvalues of another basis (m disagrees with the harmonics).
   vtkSmartPointer<vtkPolyData> other = MakeBasis(5);
   vtkNew<vtkPolyData> mismatched;
