@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Problem.h"
 
+#include "Solver/Diagnostics.h"
+
 #include <cmath>
 
 namespace spectral
@@ -144,8 +146,8 @@ std::pair<double, double> WindowEigenvalues(double lower, double upper, double s
   const double high = upper * scale;
   if (!(lower >= 0.0) || !(high > low) || !std::isfinite(high))
   {
-    throw InvalidInput("the frequency window [" + std::to_string(lower) + ", " +
-      std::to_string(upper) + ") must have 0 <= lower < upper < infinity");
+    throw InvalidInput("the frequency window [" + detail::Str(lower) + ", " +
+      detail::Str(upper) + ") must have 0 <= lower < upper < infinity");
   }
   return { low * low, high * high };
 }
@@ -153,8 +155,8 @@ std::pair<double, double> WindowEigenvalues(double lower, double upper, double s
 //------------------------------------------------------------------------------
 std::string EmptyWindow(double lower, double upper, int below)
 {
-  return "no eigenvalue lies in the frequency window [" + std::to_string(lower) + ", " +
-    std::to_string(upper) + "): " + std::to_string(below) + " lie below it";
+  return "no eigenvalue lies in the frequency window [" + detail::Str(lower) + ", " +
+    detail::Str(upper) + "): " + std::to_string(below) + " lie below it";
 }
 
 //------------------------------------------------------------------------------

@@ -642,6 +642,24 @@ void FrequencyWindow()
   options.LowerFrequency = 3.0;
   options.UpperFrequency = 2.0;
   CheckThrows<InvalidInput>([&]() { ComputeBasis(sphere, options); }, "an empty window is refused");
+
+  // A mesh in micrometres (a sphere of radius 1e6): the message gives the window as asked, not
+  // rounded to six decimals (it said [0.000003, 0.000003)).
+  TriangleMesh micro = sphere;
+  micro.Vertices *= 1e6;
+  options.LowerFrequency = 2.5e-6;
+  options.UpperFrequency = 2.6e-6;
+  std::string message;
+  try
+  {
+    ComputeBasis(micro, options);
+  }
+  catch (const InvalidInput& error)
+  {
+    message = error.what();
+  }
+  Check(message.find("[2.5e-06, 2.6e-06)") != std::string::npos,
+    "the error gives the window's frequencies as asked: " + message);
 }
 
 //------------------------------------------------------------------------------
