@@ -27,6 +27,22 @@ constexpr int DefaultNumberOfNeighbors = 30;
 constexpr double DefaultCutoffFraction = 0.5;
 /// The upper band edge (band filters) in the same units: the highest computed frequency.
 constexpr double DefaultUpperCutoffFraction = 1.0;
+/// The functional map's first size k (FunctionalMapOptions::InitialSize, Filtering/FunctionalMap.h):
+/// the descriptor-based estimate. Low frequencies are what descriptors and the commutativity
+/// with the Laplacians determine well (Ovsjanikov et al. 2012 and ZoomOut start at 20 to 30).
+constexpr int DefaultFunctionalMapInitialSize = 30;
+/// Its final size after the ZoomOut refinement (clamped to the harmonics both bases have):
+/// the default number of harmonics of a basis.
+constexpr int DefaultFunctionalMapFinalSize = DefaultNumberOfHarmonics;
+/// The growth of k per ZoomOut iteration (Melzi et al. 2019 use 1).
+constexpr int DefaultZoomOutStep = 1;
+/// The wave kernel energies of the functional map's descriptors.
+constexpr int DefaultNumberOfMapDescriptors = 50;
+/// The weight of the commutativity with the Laplacians relative to descriptor preservation
+/// (each term divided by its own scale, FunctionalMap.h).
+constexpr double DefaultCommutativityWeight = 0.1;
+/// The weight of the landmark descriptors relative to the other descriptors.
+constexpr double DefaultLandmarkWeight = 1.0;
 } // namespace spectral
 
 #endif

@@ -1,0 +1,651 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// Functional maps (FunctionalMap.h): the checks of the two shapes, the descriptors and the
+// initial map, the ZoomOut refinement, the nearest rows by blocks, transfer and mode alignment.
+#include "Filtering/FunctionalMap.h"
+
+#include "Common/Eigenvalues.h"
+#include "Common/Threads.h"
+#include "Filtering/Descriptors.h"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <tuple>
+
+namespace spectral
+{
+namespace
+{
+/// Query rows and database rows per block of the nearest-row search: a block of distances is
+/// QueryBlock x DatabaseBlock doubles (2 MB) per thread.
+constexpr Eigen::Index QueryBlock = 256;
+constexpr Eigen::Index DatabaseBlock = 1024;
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Sizes and values of one shape: n rows everywhere, m >= 2 ascending finite eigenvalues,
+/// finite harmonics, non-negative finite masses, some mass.
+void CheckShape(const SpectralShape& shape, const char* name)
+{
+  const std::string who(name);
+  const Eigen::Index n = shape.Harmonics.rows();
+  const Eigen::Index m = shape.Harmonics.cols();
+  if (m < 2)
+  {
+    throw InvalidInput("the " + who + " has " + std::to_string(m) +
+      " harmonics; a functional map needs at least 2 (compute a basis with more)");
+  }
+  if (shape.Eigenvalues.size() != m)
+  {
+    throw InvalidInput("the " + who + " has " + std::to_string(shape.Eigenvalues.size()) +
+      " eigenvalues for " + std::to_string(m) + " harmonics");
+  }
+  if (shape.Mass.size() != n)
+  {
+    throw InvalidInput("the " + who + " has " + std::to_string(shape.Mass.size()) +
+      " masses for " + std::to_string(n) + " points of its harmonics");
+  }
+  if (shape.Vertices.rows() != 0 && shape.Vertices.rows() != n)
+  {
+    throw InvalidInput("the " + who + " has " + std::to_string(shape.Vertices.rows()) +
+      " points for " + std::to_string(n) + " rows of its harmonics");
+  }
+  if (!shape.Eigenvalues.allFinite() || !shape.Harmonics.allFinite() || !shape.Mass.allFinite())
+  {
+    throw InvalidInput("the " + who + " has non-finite eigenvalues, harmonics or masses");
+  }
+  for (Eigen::Index k = 1; k < m; ++k)
+  {
+    if (shape.Eigenvalues[k] < shape.Eigenvalues[k - 1])
+    {
+      throw InvalidInput("the eigenvalues of the " + who + " are not ascending");
+    }
+  }
+  if ((shape.Mass.array() < 0.0).any() || !(shape.Mass.sum() > 0.0))
+  {
+    throw InvalidInput("the " + who + " has a negative mass or no point of positive mass");
+  }
+}
+
+/// The eigenvalues of a shape with the rule of Common/Eigenvalues.h for the zero ones.
+Spectrum SpectrumOf(const SpectralShape& shape)
+{
+  Spectrum spectrum;
+  spectrum.Lambda = shape.Eigenvalues;
+  const double top = shape.Eigenvalues.maxCoeff();
+  spectrum.NonZero.resize(static_cast<std::size_t>(shape.Eigenvalues.size()));
+  for (Eigen::Index k = 0; k < shape.Eigenvalues.size(); ++k)
+  {
+    spectrum.NonZero[static_cast<std::size_t>(k)] = !IsZeroEigenvalue(shape.Eigenvalues[k], top);
+  }
+  return spectrum;
+}
+
+/// The energies both shapes use: from the first non-zero eigenvalue to the m-th that both
+/// have, the larger first and the smaller last of the two shapes.
+WaveKernelEnergies CommonEnergies(
+  const Spectrum& source, const Spectrum& target, Eigen::Index common, int count)
+{
+  const auto firstNonZero = [](const Spectrum& s, Eigen::Index upTo)
+  {
+    for (Eigen::Index k = 0; k < upTo; ++k)
+    {
+      if (s.NonZero[static_cast<std::size_t>(k)])
+      {
+        return s.Lambda[k];
+      }
+    }
+    throw InvalidInput("a basis of a functional map has no non-constant harmonic among its "
+                       "first " + std::to_string(upTo) + " (every eigenvalue is zero)");
+  };
+  Spectrum both;
+  both.Lambda.resize(2);
+  both.Lambda << std::max(firstNonZero(source, common), firstNonZero(target, common)),
+    std::min(source.Lambda[common - 1], target.Lambda[common - 1]);
+  if (!(both.Lambda[1] > both.Lambda[0]))
+  {
+    both.Lambda[1] = std::max(source.Lambda[common - 1], target.Lambda[common - 1]);
+  }
+  both.NonZero.assign(2, true);
+  return DefaultWaveKernelEnergies(both, count);
+}
+
+/// Divide each column by its D-norm (columns of norm 0 stay 0).
+void NormalizeColumns(RowMatrix& F, const Vector& mass)
+{
+  for (Eigen::Index c = 0; c < F.cols(); ++c)
+  {
+    const double norm = std::sqrt((F.col(c).array().square() * mass.array()).sum());
+    if (norm > 0.0)
+    {
+      F.col(c) /= norm;
+    }
+  }
+}
+
+/// Phi_k^T D F: the coefficients of the columns of F on the first k harmonics.
+DenseMatrix Project(const SpectralShape& shape, const RowMatrix& F, Eigen::Index k)
+{
+  const RowMatrix weighted = shape.Mass.asDiagonal() * F;
+  return shape.Harmonics.leftCols(k).transpose() * weighted;
+}
+
+/// The coefficients (on the first k harmonics) of the wave kernels between each landmark
+/// point and every point, one column per landmark and energy, each of unit norm.
+DenseMatrix LandmarkCoefficients(const SpectralShape& shape, const DenseMatrix& W,
+  const std::vector<int>& points, Eigen::Index k)
+{
+  const Eigen::Index E = W.cols();
+  DenseMatrix result(k, static_cast<Eigen::Index>(points.size()) * E);
+  for (std::size_t l = 0; l < points.size(); ++l)
+  {
+    const Eigen::Index p = points[l];
+    for (Eigen::Index e = 0; e < E; ++e)
+    {
+      Vector column = W.col(e).cwiseProduct(shape.Harmonics.row(p).transpose());
+      const double norm = column.norm();
+      result.col(static_cast<Eigen::Index>(l) * E + e) =
+        norm > 0.0 ? Vector(column.head(k) / norm) : Vector(column.head(k));
+    }
+  }
+  return result;
+}
+
+/// The C minimizing ||C A - B||^2 + sum_ij w_ij C_ij^2 with w_ij = weight (l2_i - l1_j)^2 / s,
+/// row by row: (A A^T + diag(w_i.)) c_i = A b_i.
+DenseMatrix SolveRows(const DenseMatrix& A, const DenseMatrix& B, const Vector& lambda1,
+  const Vector& lambda2, double weight)
+{
+  const Eigen::Index k = A.rows();
+  DenseMatrix penalty(k, k);
+  for (Eigen::Index i = 0; i < k; ++i)
+  {
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+      const double d = lambda2[i] - lambda1[j];
+      penalty(i, j) = d * d;
+    }
+  }
+  const double scale = penalty.sum();
+  if (scale > 0.0)
+  {
+    penalty *= weight / scale;
+  }
+  const DenseMatrix gram = A * A.transpose();
+  const DenseMatrix right = B * A.transpose(); // row i is (A b_i)^T
+  DenseMatrix C(k, k);
+  for (Eigen::Index i = 0; i < k; ++i)
+  {
+    DenseMatrix system = gram;
+    system.diagonal() += penalty.row(i).transpose();
+    C.row(i) = system.ldlt().solve(right.row(i).transpose()).transpose();
+  }
+  return C;
+}
+
+/// The resolved sizes (0 for automatic), checked against both bases.
+std::pair<int, int> ResolveSizes(const FunctionalMapOptions& options, Eigen::Index m1,
+  Eigen::Index m2)
+{
+  const int common = static_cast<int>(std::min(m1, m2));
+  int final = options.FinalSize;
+  if (final == 0)
+  {
+    final = std::min(DefaultFunctionalMapFinalSize, common);
+  }
+  if (final < 1 || final > common)
+  {
+    throw InvalidInput("the final size of the functional map (" +
+      std::to_string(options.FinalSize) + ") must be between 1 and the harmonics of both bases (" +
+      std::to_string(m1) + " on the source, " + std::to_string(m2) +
+      " on the target): lower FinalSize or compute more harmonics");
+  }
+  int initial = options.InitialSize;
+  if (initial == 0)
+  {
+    initial = std::min(DefaultFunctionalMapInitialSize, final);
+  }
+  if (initial < 1 || initial > final)
+  {
+    throw InvalidInput("the initial size of the functional map (" +
+      std::to_string(options.InitialSize) + ") must be between 1 and its final size (" +
+      std::to_string(final) + ")");
+  }
+  return { initial, final };
+}
+
+void CheckOptions(const FunctionalMapOptions& options, const SpectralShape& source,
+  const SpectralShape& target)
+{
+  if (options.OrientationTerm)
+  {
+    throw InvalidInput("the orientation term of functional maps is not yet available: use "
+                       "landmarks to tell a shape from its mirror image");
+  }
+  if (options.ZoomOutStep < 1 || options.NumberOfDescriptors < 1)
+  {
+    throw InvalidInput("the ZoomOut step and the number of descriptors must be at least 1");
+  }
+  const auto bad = [](double w) { return !(w >= 0.0) || !std::isfinite(w); };
+  if (bad(options.DescriptorWeight) || !(options.DescriptorWeight > 0.0) ||
+    bad(options.CommutativityWeight) || bad(options.LandmarkWeight) ||
+    bad(options.OrientationWeight))
+  {
+    throw InvalidInput("the weights of a functional map must be finite and non-negative, the "
+                       "descriptor weight positive");
+  }
+  for (const auto& pair : options.Landmarks)
+  {
+    if (pair.first < 0 || pair.first >= source.Harmonics.rows() || pair.second < 0 ||
+      pair.second >= target.Harmonics.rows())
+    {
+      throw InvalidInput("the landmark (" + std::to_string(pair.first) + ", " +
+        std::to_string(pair.second) + ") is out of range: the source has " +
+        std::to_string(source.Harmonics.rows()) + " points, the target " +
+        std::to_string(target.Harmonics.rows()));
+    }
+    if (!(source.Mass[pair.first] > 0.0) || !(target.Mass[pair.second] > 0.0))
+    {
+      throw InvalidInput("the landmark (" + std::to_string(pair.first) + ", " +
+        std::to_string(pair.second) + ") is on a point outside the surface (zero mass)");
+    }
+  }
+}
+
+/// The point map of C with the landmarks imposed.
+std::vector<int> PointMapWithLandmarks(const SpectralShape& source, const SpectralShape& target,
+  const DenseMatrix& C, const FunctionalMapOptions& options)
+{
+  std::vector<int> ids = PointMapFromFunctionalMap(source, target, C, options.Threads);
+  for (const auto& pair : options.Landmarks)
+  {
+    ids[static_cast<std::size_t>(pair.second)] = pair.first;
+  }
+  return ids;
+}
+
+std::vector<bool> PositiveMass(const Vector& mass)
+{
+  std::vector<bool> positive(static_cast<std::size_t>(mass.size()));
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+  {
+    positive[static_cast<std::size_t>(i)] = mass[i] > 0.0;
+  }
+  return positive;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::vector<int> NearestRows(const RowMatrix& queries, const RowMatrix& database,
+  const std::vector<bool>& allowed, int threads)
+{
+  if (queries.cols() != database.cols())
+  {
+    throw InvalidInput("nearest rows: the queries have " + std::to_string(queries.cols()) +
+      " columns, the database " + std::to_string(database.cols()));
+  }
+  if (!allowed.empty() && static_cast<Eigen::Index>(allowed.size()) != database.rows())
+  {
+    throw InvalidInput("nearest rows: the mask has " + std::to_string(allowed.size()) +
+      " entries for " + std::to_string(database.rows()) + " database rows");
+  }
+  const Eigen::Index nq = queries.rows();
+  const Eigen::Index nd = database.rows();
+  std::vector<int> nearest(static_cast<std::size_t>(nq), -1);
+  if (nq == 0 || nd == 0)
+  {
+    return nearest;
+  }
+  const Vector norms = database.rowwise().squaredNorm();
+  // Blocks at fixed positions, so that each distance is the same whatever the thread count.
+  const Eigen::Index blocks = (nq + QueryBlock - 1) / QueryBlock;
+  const int parts = static_cast<int>(std::min<Eigen::Index>(
+    blocks, ThreadsForWork(nq * nd * std::max<Eigen::Index>(1, queries.cols()), 1 << 22, threads)));
+  ForEachRowRange(blocks, parts,
+    [&](int, Eigen::Index firstBlock, Eigen::Index count)
+    {
+      DenseMatrix products;
+      for (Eigen::Index b = firstBlock; b < firstBlock + count; ++b)
+      {
+        const Eigen::Index q0 = b * QueryBlock;
+        const Eigen::Index qn = std::min(QueryBlock, nq - q0);
+        std::vector<double> best(static_cast<std::size_t>(qn),
+          std::numeric_limits<double>::infinity());
+        for (Eigen::Index d0 = 0; d0 < nd; d0 += DatabaseBlock)
+        {
+          const Eigen::Index dn = std::min(DatabaseBlock, nd - d0);
+          products.noalias() =
+            queries.middleRows(q0, qn) * database.middleRows(d0, dn).transpose();
+          for (Eigen::Index r = 0; r < qn; ++r)
+          {
+            double& bestOfRow = best[static_cast<std::size_t>(r)];
+            int& nearestOfRow = nearest[static_cast<std::size_t>(q0 + r)];
+            for (Eigen::Index c = 0; c < dn; ++c)
+            {
+              const Eigen::Index i = d0 + c;
+              if (!allowed.empty() && !allowed[static_cast<std::size_t>(i)])
+              {
+                continue;
+              }
+              const double distance = norms[i] - 2.0 * products(r, c);
+              if (distance < bestOfRow)
+              {
+                bestOfRow = distance;
+                nearestOfRow = static_cast<int>(i);
+              }
+            }
+          }
+        }
+      }
+    });
+  return nearest;
+}
+
+//------------------------------------------------------------------------------
+std::vector<int> PointMapFromFunctionalMap(
+  const SpectralShape& source, const SpectralShape& target, const DenseMatrix& map, int threads)
+{
+  const Eigen::Index k2 = map.rows();
+  const Eigen::Index k1 = map.cols();
+  if (k1 < 1 || k2 < 1 || k1 > source.Harmonics.cols() || k2 > target.Harmonics.cols())
+  {
+    throw InvalidInput("a functional map of " + std::to_string(k2) + " by " +
+      std::to_string(k1) + " does not fit bases of " + std::to_string(target.Harmonics.cols()) +
+      " (target) and " + std::to_string(source.Harmonics.cols()) + " (source) harmonics");
+  }
+  if (source.Mass.size() != source.Harmonics.rows() ||
+    target.Mass.size() != target.Harmonics.rows())
+  {
+    throw InvalidInput("a shape has a mass vector of the wrong size");
+  }
+  const std::vector<bool> allowed = PositiveMass(source.Mass);
+  if (std::find(allowed.begin(), allowed.end(), true) == allowed.end())
+  {
+    throw InvalidInput("the source has no point of positive mass");
+  }
+  // Only the target points of positive mass are queried.
+  std::vector<int> rows;
+  for (Eigen::Index j = 0; j < target.Mass.size(); ++j)
+  {
+    if (target.Mass[j] > 0.0)
+    {
+      rows.push_back(static_cast<int>(j));
+    }
+  }
+  RowMatrix queries(static_cast<Eigen::Index>(rows.size()), k1);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    queries.row(static_cast<Eigen::Index>(r)).noalias() =
+      target.Harmonics.row(rows[r]).head(k2) * map;
+  }
+  const RowMatrix database = source.Harmonics.leftCols(k1);
+  const std::vector<int> nearest = NearestRows(queries, database, allowed, threads);
+  std::vector<int> ids(static_cast<std::size_t>(target.Mass.size()), -1);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    ids[static_cast<std::size_t>(rows[r])] = nearest[r];
+  }
+  return ids;
+}
+
+//------------------------------------------------------------------------------
+DenseMatrix FunctionalMapFromPointMap(const SpectralShape& source, const SpectralShape& target,
+  const std::vector<int>& correspondingPointIds, int k)
+{
+  if (k < 1 || k > source.Harmonics.cols() || k > target.Harmonics.cols())
+  {
+    throw InvalidInput("a functional map of size " + std::to_string(k) +
+      " needs that many harmonics on both shapes (" + std::to_string(source.Harmonics.cols()) +
+      " on the source, " + std::to_string(target.Harmonics.cols()) + " on the target)");
+  }
+  const Eigen::Index n2 = target.Harmonics.rows();
+  if (static_cast<Eigen::Index>(correspondingPointIds.size()) != n2 || target.Mass.size() != n2)
+  {
+    throw InvalidInput("the point map has " + std::to_string(correspondingPointIds.size()) +
+      " entries for " + std::to_string(n2) + " target points");
+  }
+  // G = D2 Pi Phi1_k, then C = Phi2_k^T G.
+  RowMatrix G = RowMatrix::Zero(n2, k);
+  for (Eigen::Index j = 0; j < n2; ++j)
+  {
+    const int i = correspondingPointIds[static_cast<std::size_t>(j)];
+    if (i < -1 || i >= source.Harmonics.rows())
+    {
+      throw InvalidInput("the point map holds the source point " + std::to_string(i) +
+        ", out of range (the source has " + std::to_string(source.Harmonics.rows()) + ")");
+    }
+    if (i >= 0)
+    {
+      G.row(j) = target.Mass[j] * source.Harmonics.row(i).head(k);
+    }
+  }
+  return target.Harmonics.leftCols(k).transpose() * G;
+}
+
+//------------------------------------------------------------------------------
+FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
+  const SpectralShape& target, const FunctionalMapOptions& options, const Monitor& monitor)
+{
+  const auto start = std::chrono::steady_clock::now();
+  CheckShape(source, "source");
+  CheckShape(target, "target");
+  CheckOptions(options, source, target);
+  FunctionalMapResult result;
+  std::tie(result.InitialSize, result.FinalSize) =
+    ResolveSizes(options, source.Harmonics.cols(), target.Harmonics.cols());
+  const Eigen::Index k0 = result.InitialSize;
+  const Eigen::Index common = std::min(source.Harmonics.cols(), target.Harmonics.cols());
+
+  // Descriptors and the initial map.
+  monitor.Begin("Descriptors");
+  monitor.ThrowIfCancelled();
+  const Spectrum spectrum1 = SpectrumOf(source);
+  const Spectrum spectrum2 = SpectrumOf(target);
+  const WaveKernelEnergies energies =
+    CommonEnergies(spectrum1, spectrum2, common, options.NumberOfDescriptors);
+  RowMatrix F1 = WaveKernelSignature(
+    BasisView(source.Harmonics.data(), source.Harmonics.rows(), source.Harmonics.cols()),
+    spectrum1, energies);
+  RowMatrix F2 = WaveKernelSignature(
+    BasisView(target.Harmonics.data(), target.Harmonics.rows(), target.Harmonics.cols()),
+    spectrum2, energies);
+  NormalizeColumns(F1, source.Mass);
+  NormalizeColumns(F2, target.Mass);
+  const DenseMatrix A = Project(source, F1, k0);
+  const DenseMatrix B = Project(target, F2, k0);
+  monitor.Report(0.1);
+  monitor.ThrowIfCancelled();
+
+  // Weighted descriptors, each family divided by its number of columns.
+  const Eigen::Index q = A.cols();
+  const Eigen::Index L = static_cast<Eigen::Index>(options.Landmarks.size());
+  const Eigen::Index ql = options.LandmarkWeight > 0.0 ? L * energies.Energies.size() : 0;
+  DenseMatrix Aw(k0, q + ql);
+  DenseMatrix Bw(k0, q + ql);
+  const double descriptorScale = std::sqrt(options.DescriptorWeight / static_cast<double>(q));
+  Aw.leftCols(q) = descriptorScale * A;
+  Bw.leftCols(q) = descriptorScale * B;
+  if (ql > 0)
+  {
+    std::vector<int> points1;
+    std::vector<int> points2;
+    for (const auto& pair : options.Landmarks)
+    {
+      points1.push_back(pair.first);
+      points2.push_back(pair.second);
+    }
+    const double landmarkScale =
+      std::sqrt(options.DescriptorWeight * options.LandmarkWeight / static_cast<double>(ql));
+    Aw.rightCols(ql) =
+      landmarkScale * LandmarkCoefficients(source, WaveKernelWeights(spectrum1, energies),
+        points1, k0);
+    Bw.rightCols(ql) =
+      landmarkScale * LandmarkCoefficients(target, WaveKernelWeights(spectrum2, energies),
+        points2, k0);
+  }
+  result.InitialMap = SolveRows(Aw, Bw, source.Eigenvalues.head(k0),
+    target.Eigenvalues.head(k0), options.CommutativityWeight);
+  const double normB = B.norm();
+  result.DescriptorResidual = normB > 0.0 ? (result.InitialMap * A - B).norm() / normB : 0.0;
+  result.EstimateSeconds = SecondsSince(start);
+  monitor.Report(0.2);
+
+  // ZoomOut.
+  monitor.Begin("Refine");
+  const auto refine = std::chrono::steady_clock::now();
+  DenseMatrix C = result.InitialMap;
+  monitor.ThrowIfCancelled();
+  std::vector<int> ids = PointMapWithLandmarks(source, target, C, options);
+  result.Iterations = 1;
+  const int steps = (result.FinalSize - result.InitialSize + options.ZoomOutStep - 1) /
+    options.ZoomOutStep;
+  for (int k = result.InitialSize; k < result.FinalSize;)
+  {
+    k = std::min(k + options.ZoomOutStep, result.FinalSize);
+    C = FunctionalMapFromPointMap(source, target, ids, k);
+    monitor.ThrowIfCancelled();
+    ids = PointMapWithLandmarks(source, target, C, options);
+    monitor.Report(0.2 + 0.8 * result.Iterations / static_cast<double>(steps + 1));
+    ++result.Iterations;
+  }
+  result.Map = C;
+  result.CorrespondingPointIds = std::move(ids);
+  result.RefinementSeconds = SecondsSince(refine);
+  monitor.Report(1.0);
+  return result;
+}
+
+//------------------------------------------------------------------------------
+RowMatrix TransferThroughMap(const SpectralShape& source, const SpectralShape& target,
+  const DenseMatrix& map, const ConstRowView& values)
+{
+  const Eigen::Index k2 = map.rows();
+  const Eigen::Index k1 = map.cols();
+  if (k1 > source.Harmonics.cols() || k2 > target.Harmonics.cols())
+  {
+    throw InvalidInput("a functional map of " + std::to_string(k2) + " by " +
+      std::to_string(k1) + " does not fit bases of " + std::to_string(target.Harmonics.cols()) +
+      " (target) and " + std::to_string(source.Harmonics.cols()) + " (source) harmonics");
+  }
+  const Eigen::Index n1 = source.Harmonics.rows();
+  if (values.rows() != n1 || source.Mass.size() != n1)
+  {
+    throw InvalidInput("the source values have " + std::to_string(values.rows()) +
+      " rows for " + std::to_string(n1) + " source points");
+  }
+  // D1 X, with the points of zero mass left out (their values may be anything, even NaN).
+  RowMatrix weighted = RowMatrix::Zero(n1, values.cols());
+  for (Eigen::Index i = 0; i < n1; ++i)
+  {
+    if (source.Mass[i] > 0.0)
+    {
+      weighted.row(i) = source.Mass[i] * values.row(i);
+    }
+  }
+  const DenseMatrix coefficients = source.Harmonics.leftCols(k1).transpose() * weighted;
+  return target.Harmonics.leftCols(k2) * (map * coefficients);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix TransferThroughPoints(
+  const std::vector<int>& correspondingPointIds, const ConstRowView& values)
+{
+  RowMatrix result(static_cast<Eigen::Index>(correspondingPointIds.size()), values.cols());
+  for (std::size_t j = 0; j < correspondingPointIds.size(); ++j)
+  {
+    const int i = correspondingPointIds[j];
+    if (i < -1 || i >= values.rows())
+    {
+      throw InvalidInput("the point map holds the source point " + std::to_string(i) +
+        ", out of range (the values have " + std::to_string(values.rows()) + " rows)");
+    }
+    if (i >= 0)
+    {
+      result.row(static_cast<Eigen::Index>(j)) = values.row(i);
+    }
+    else
+    {
+      result.row(static_cast<Eigen::Index>(j)).setConstant(
+        std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return result;
+}
+
+//------------------------------------------------------------------------------
+RowMatrix AlignModes(const SpectralShape& source, const SpectralShape& target,
+  const DenseMatrix& map, std::vector<int>* order, Vector* signs)
+{
+  const Eigen::Index k2 = map.rows();
+  const Eigen::Index k1 = map.cols();
+  if (k1 > k2 || k1 > source.Harmonics.cols() || k2 > target.Harmonics.cols() ||
+    target.Eigenvalues.size() < k2)
+  {
+    throw InvalidInput("mode alignment needs a map of k2 by k1 with k1 <= k2 and bases of at "
+                       "least that many harmonics");
+  }
+  // Near-degenerate groups of the target's first k2 eigenvalues: group[j] is the first index.
+  std::vector<Eigen::Index> group(static_cast<std::size_t>(k2), 0);
+  const double top = target.Eigenvalues.head(k2).maxCoeff();
+  for (Eigen::Index j = 1; j < k2; ++j)
+  {
+    const double a = target.Eigenvalues[j - 1];
+    const double b = target.Eigenvalues[j];
+    const bool bothZero = IsZeroEigenvalue(a, top) && IsZeroEigenvalue(b, top);
+    const bool close = !IsZeroEigenvalue(a, top) && b - a <= DegenerateEigenvalueGap * b;
+    group[static_cast<std::size_t>(j)] = bothZero || close ? group[static_cast<std::size_t>(j - 1)] : j;
+  }
+  std::vector<bool> used(static_cast<std::size_t>(k2), false);
+  RowMatrix aligned = RowMatrix::Zero(target.Harmonics.rows(), k1);
+  if (order)
+  {
+    order->assign(static_cast<std::size_t>(k1), -1);
+  }
+  if (signs)
+  {
+    signs->setOnes(k1);
+  }
+  for (Eigen::Index k = 0; k < k1; ++k)
+  {
+    Eigen::Index best = -1;
+    for (Eigen::Index j = 0; j < k2; ++j)
+    {
+      if (!used[static_cast<std::size_t>(j)] &&
+        (best < 0 || std::abs(map(j, k)) > std::abs(map(best, k))))
+      {
+        best = j;
+      }
+    }
+    used[static_cast<std::size_t>(best)] = true;
+    const Eigen::Index first = group[static_cast<std::size_t>(best)];
+    Eigen::Index count = 1;
+    while (first + count < k2 && group[static_cast<std::size_t>(first + count)] == first)
+    {
+      ++count;
+    }
+    const Vector c = map.col(k).segment(first, count);
+    const double norm = c.norm();
+    if (norm > 0.0)
+    {
+      aligned.col(k) = target.Harmonics.middleCols(first, count) * (c / norm);
+    }
+    if (order)
+    {
+      (*order)[static_cast<std::size_t>(k)] = static_cast<int>(best);
+    }
+    if (signs)
+    {
+      (*signs)[k] = map(best, k) < 0.0 ? -1.0 : 1.0;
+    }
+  }
+  return aligned;
+}
+} // namespace spectral
