@@ -9,6 +9,7 @@
 #include "Filtering/Descriptors.h"
 #include "Filtering/FunctionalMap.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -555,6 +556,30 @@ void InvalidInputRefused()
     "nearest rows of different widths");
 }
 
+//------------------------------------------------------------------------------
+void ProgressAndCancellation()
+{
+  // Progress rises to 1 through the stages; a cancel request during the refinement stops it.
+  const Pair pair = MakePair(IrregularQuadrilateral(), 12, 8, 14, 10, 20);
+  FunctionalMapOptions options;
+  options.InitialSize = 10;
+  std::vector<double> reports;
+  std::vector<std::string> stages;
+  Monitor monitor;
+  monitor.Progress = [&reports](double f) { reports.push_back(f); };
+  monitor.Stage = [&stages](const char* name) { stages.emplace_back(name); };
+  ComputeFunctionalMap(pair.S, pair.T, options, monitor);
+  Check(!reports.empty() && std::is_sorted(reports.begin(), reports.end()) &&
+      reports.back() == 1.0,
+    "progress rises to 1 (" + std::to_string(reports.size()) + " reports)");
+  Check(stages == std::vector<std::string>{ "Descriptors", "Refine" }, "stages announced");
+  int polls = 0;
+  monitor.Cancelled = [&polls]() { return ++polls > 4; };
+  CheckThrows<Cancelled>(
+    [&pair, &options, &monitor]() { ComputeFunctionalMap(pair.S, pair.T, options, monitor); },
+    "cancelled at the fifth poll, in the refinement");
+}
+
 const Case Cases[] = {
   { "ZoomOutFindsTheIsometry", ZoomOutFindsTheIsometry },
   { "SampledZoomOut", SampledZoomOut },
@@ -567,6 +592,7 @@ const Case Cases[] = {
   { "ModeAlignment", ModeAlignment },
   { "NearestRowsMatchBruteForce", NearestRowsMatchBruteForce },
   { "InvalidInputRefused", InvalidInputRefused },
+  { "ProgressAndCancellation", ProgressAndCancellation },
 };
 } // namespace
 
