@@ -33,6 +33,7 @@ set(spectral_core_sources
   Solver/Memory.cxx
   Filtering/Transfer.cxx
   Filtering/Descriptors.cxx
+  Filtering/FunctionalMap.cxx
   )
 set(spectral_core_headers
   Basis.h
@@ -66,6 +67,7 @@ set(spectral_core_headers
   Solver/Memory.h
   Filtering/Transfer.h
   Filtering/Descriptors.h
+  Filtering/FunctionalMap.h
   )
 # The distributed engine on SLEPc/PETSc (Distributed/Solve.h), without VTK: built only when the
 # top level finds SLEPc (MANIFOLDHARMONICS_HAS_SLEPC), by the VTK module (Filters/CMakeLists.txt)

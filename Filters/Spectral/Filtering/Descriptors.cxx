@@ -143,30 +143,7 @@ RowMatrix WaveKernelSignatureOf(const View& H,
   const WaveKernelEnergies& energies)
 {
   CheckBasis(H, spectrum);
-  if (!(energies.Sigma > 0.0 && std::isfinite(energies.Sigma)))
-  {
-    throw InvalidInput("the wave kernel sigma must be a positive finite number");
-  }
-  const std::vector<Eigen::Index> nonZero = NonZeroIndices(spectrum);
-  if (nonZero.empty())
-  {
-    throw InvalidInput("the basis has no non-constant harmonic (every eigenvalue is zero)");
-  }
-  const Eigen::Index E = energies.Energies.size();
-  // Exponents of g_k(e_j); each column is shifted by its largest exponent before exp(), which
-  // cancels in the normalization and keeps a narrow filter from underflowing to 0 / 0.
-  DenseMatrix exponents =
-    DenseMatrix::Constant(spectrum.Lambda.size(), E, -std::numeric_limits<double>::infinity());
-  const double twoSigma2 = 2.0 * energies.Sigma * energies.Sigma;
-  for (Eigen::Index k : nonZero)
-  {
-    const double logLambda = std::log(spectrum.Lambda[k]);
-    exponents.row(k) =
-      -(energies.Energies.transpose().array() - logLambda).square().matrix() / twoSigma2;
-  }
-  DenseMatrix W = (exponents.rowwise() - exponents.colwise().maxCoeff()).array().exp().matrix();
-  W.array().rowwise() /= W.colwise().sum().array();
-  return SquaredTimes(H, W);
+  return SquaredTimes(H, WaveKernelWeights(spectrum, energies));
 }
 
 template<typename View>
@@ -378,6 +355,35 @@ WaveKernelEnergies DefaultWaveKernelEnergies(const Spectrum& spectrum, int count
     result.Energies[0] = low + 0.5 * width;
   }
   return result;
+}
+
+//------------------------------------------------------------------------------
+DenseMatrix WaveKernelWeights(const Spectrum& spectrum, const WaveKernelEnergies& energies)
+{
+  if (!(energies.Sigma > 0.0 && std::isfinite(energies.Sigma)))
+  {
+    throw InvalidInput("the wave kernel sigma must be a positive finite number");
+  }
+  const std::vector<Eigen::Index> nonZero = NonZeroIndices(spectrum);
+  if (nonZero.empty())
+  {
+    throw InvalidInput("the basis has no non-constant harmonic (every eigenvalue is zero)");
+  }
+  const Eigen::Index E = energies.Energies.size();
+  // Exponents of g_k(e_j); each column is shifted by its largest exponent before exp(), which
+  // cancels in the normalization and keeps a narrow filter from underflowing to 0 / 0.
+  DenseMatrix exponents =
+    DenseMatrix::Constant(spectrum.Lambda.size(), E, -std::numeric_limits<double>::infinity());
+  const double twoSigma2 = 2.0 * energies.Sigma * energies.Sigma;
+  for (Eigen::Index k : nonZero)
+  {
+    const double logLambda = std::log(spectrum.Lambda[k]);
+    exponents.row(k) =
+      -(energies.Energies.transpose().array() - logLambda).square().matrix() / twoSigma2;
+  }
+  DenseMatrix W = (exponents.rowwise() - exponents.colwise().maxCoeff()).array().exp().matrix();
+  W.array().rowwise() /= W.colwise().sum().array();
+  return W;
 }
 
 //------------------------------------------------------------------------------

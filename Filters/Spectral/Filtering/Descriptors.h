@@ -146,6 +146,17 @@ WaveKernelEnergies DefaultWaveKernelEnergies(const Spectrum& spectrum,
   double sigma = 0.0);
 
 /**
+ * The weights of the wave kernel (Aubry et al. 2011, section 4.2): W_kj = g_k(e_j) /
+ * sum_k g_k(e_j) with g_k(e) = exp(-(e - log lambda_k)^2 / (2 sigma^2)) over the non-zero
+ * eigenvalues, 0 for the zero ones. The signature is WKS(i, e_j) = sum_k W_kj h_k(i)^2, and
+ * the wave kernel between two points p and x is sum_k W_kj h_k(p) h_k(x), whose coefficients in
+ * the basis are W_kj h_k(p) (the landmark descriptors of FunctionalMap.h).
+ * \return m by E, each column summing to 1.
+ * \throws InvalidInput if there is no non-zero eigenvalue or sigma <= 0.
+ */
+DenseMatrix WaveKernelWeights(const Spectrum& spectrum, const WaveKernelEnergies& energies);
+
+/**
  * Wave kernel signature (Aubry et al. 2011, eq. 6 with the energy filters of section 4.2):
  * WKS(i, e) = sum_k h_k(i)^2 g_k(e) / sum_k g_k(e), g_k(e) = exp(-(e - log lambda_k)^2 /
  * (2 sigma^2)), both sums over the non-zero eigenvalues. Each column is a weighted mean of the
