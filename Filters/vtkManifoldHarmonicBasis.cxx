@@ -31,6 +31,7 @@
 #include "vtkVersionMacros.h"
 
 #include "Spectral/Basis.h"
+#include "Spectral/Common/BasisFile.h"
 
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
 #include "vtkManifoldHarmonicsSlepc.h"
@@ -38,7 +39,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <iomanip>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -332,23 +332,6 @@ void AddPieceArrays(vtkPointSet* output,
 }
 
 //------------------------------------------------------------------------------
-// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
-std::string Bytes(std::uint64_t bytes)
-{
-  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4)
-  {
-    value /= 1024.0;
-    ++unit;
-  }
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
-  return text.str();
-}
-
-//------------------------------------------------------------------------------
 // The error message of a computation that does not fit in memory: what is needed, what is
 // available, what to change.
 std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
@@ -361,14 +344,17 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   const spectral::MemoryEstimate& need = e.Needed;
   std::ostringstream message;
   message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
-          << Bytes(need.Total()) << " needed (basis " << Bytes(need.Basis)
-          << ", solver eigenvectors " << Bytes(need.Eigenvectors) << ", Lanczos workspace "
-          << Bytes(need.Krylov) << ", sparse factor " << Bytes(need.Factor) << "), "
-          << Bytes(e.Available) << " available ("
-          << (limited ? "MemoryLimit" : "reported by the system") << "). Compute fewer harmonics";
+          << spectral::ByteCount(need.Total()) << " needed (basis "
+          << spectral::ByteCount(need.Basis) << ", solver eigenvectors "
+          << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace "
+          << spectral::ByteCount(need.Krylov) << ", sparse factor "
+          << spectral::ByteCount(need.Factor) << "), " << spectral::ByteCount(e.Available)
+          << " available (" << (limited ? "MemoryLimit" : "reported by the system")
+          << "). Compute fewer harmonics";
   if (!floats)
   {
-    message << ", set BasisPrecision to Float (saves " << Bytes(need.Basis / 2) << ")";
+    message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
+            << ")";
   }
   message << ", choose a smaller BandSize (now "
           << spectral::EffectiveBandSize(m, self->GetBandSize()) << ")"
