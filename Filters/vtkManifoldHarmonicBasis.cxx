@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsBasisFile.h"
 #include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
@@ -39,6 +40,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -63,7 +65,7 @@ namespace
 struct RowsToPoints
 {
   std::vector<int> Rows;
-  std::vector<vtkIdType> Ids;
+  std::vector<std::int64_t> Ids;
 };
 
 //------------------------------------------------------------------------------
@@ -161,10 +163,7 @@ void AddHarmonicsArray(vtkDataSet* output,
   {
     harmonics = ScatterToPoints<vtkDoubleArray>(name, H, ids, numPts);
   }
-  for (Eigen::Index k = 0; k < H.cols(); ++k)
-  {
-    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
-  }
+  vtkManifoldHarmonicsBasisFile::NameHarmonics(harmonics);
   output->GetPointData()->AddArray(harmonics);
 }
 
@@ -185,21 +184,8 @@ void AddBasisArrays(vtkDataSet* output,
   }
   output->GetPointData()->AddArray(ScatterToPoints<vtkDoubleArray>(
     vtkManifoldHarmonicBasis::MassArrayName(), lumped, ids, numPts));
-
-  vtkNew<vtkDoubleArray> eigenvalues;
-  eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
-  eigenvalues->SetNumberOfTuples(m);
-  std::copy(result.Eigenvalues.data(), result.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
-  output->GetFieldData()->AddArray(eigenvalues);
-  for (const auto& figure :
-    { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
-      std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual) })
-  {
-    vtkNew<vtkDoubleArray> array;
-    array->SetName(figure.first);
-    array->InsertNextValue(figure.second);
-    output->GetFieldData()->AddArray(array);
-  }
+  vtkManifoldHarmonicsBasisFile::AddSpectrumArrays(
+    output, result.Eigenvalues.data(), m, result.MaxBackwardError, result.MaxResidual);
 }
 
 //------------------------------------------------------------------------------
@@ -314,11 +300,7 @@ void AddPieceArrays(vtkPointSet* output,
     harmonics = vtkSmartPointer<vtkFloatArray>::New();
     harmonics->DeepCopy(rows.Harmonics);
   }
-  harmonics->SetName(vtkManifoldHarmonicBasis::HarmonicsArrayName());
-  for (int k = 0; k < m; ++k)
-  {
-    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
-  }
+  vtkManifoldHarmonicsBasisFile::NameHarmonics(harmonics);
   rows.Mass->SetName(vtkManifoldHarmonicBasis::MassArrayName());
   output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
@@ -546,22 +528,73 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
 //------------------------------------------------------------------------------
 // The basis of the core on `output` (a shallow copy of `input`): each row on its point, or on
 // every copy of a welded point (the copies but one flagged as duplicates).
+// A basis kept in a file (`plan.Path`) is mapped from it instead (its header read back and
+// checked, or the reused file's); a temporary file is unlinked once mapped.
 void WriteBasis(vtkPointSet* output,
   vtkPointSet* input,
-  const spectral::BasisResult& basis,
+  const spectral::BasisResult* basis,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
   const vtkManifoldHarmonicsParallel::Welding& welding,
   bool floats)
 {
   const vtkIdType numPts = input->GetNumberOfPoints();
-  AddBasisArrays(output,
-    basis.Pairs,
-    Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
-    basis.LumpedMass,
-    floats);
+  if (!plan.Path.empty())
+  {
+    vtkManifoldHarmonicsBasisFile::AddFileArrays(
+      output, plan.Path, plan.Reuse ? plan.Header : spectral::ReadBasisFileHeader(plan.Path));
+    if (plan.Temporary)
+    {
+      std::remove(plan.Path.c_str());
+    }
+  }
+  else
+  {
+    AddBasisArrays(output,
+      basis->Pairs,
+      Targets(
+        basis->InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
+      basis->LumpedMass,
+      floats);
+  }
   if (welding.Merged())
   {
     AddPointGhosts(output, input, WeldedDuplicates(welding));
   }
+}
+
+//------------------------------------------------------------------------------
+// Writes the core's basis into the file of `plan` (atomically: see spectral::BasisFileWriter),
+// each row on its point or on every copy of a welded point, then frees the harmonics in memory.
+void WriteBasisFile(spectral::BasisResult& basis,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  const vtkManifoldHarmonicsParallel::Welding& welding,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  spectral::DenseMatrix& H = basis.Pairs.Eigenvectors;
+  const RowsToPoints targets =
+    Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
+  spectral::BasisFileHeader header;
+  header.Rows = static_cast<std::uint64_t>(numPts);
+  header.Columns = static_cast<std::uint64_t>(H.cols());
+  header.BytesPerValue = static_cast<std::uint32_t>(bytesPerValue);
+  header.MeshDigest = plan.Digest;
+  header.Options = plan.Options;
+  spectral::BasisFileWriter writer(plan.Path, header);
+  writer.WriteColumns(0, header.Columns, H.data(), H.rows(), targets.Rows, targets.Ids);
+  const spectral::Vector& lumped = basis.LumpedMass;
+  header.Eigenvalues.assign(
+    basis.Pairs.Eigenvalues.data(), basis.Pairs.Eigenvalues.data() + header.Columns);
+  header.Mass.assign(header.Rows, 0.0);
+  for (std::size_t e = 0; e < targets.Ids.size(); ++e)
+  {
+    header.Mass[targets.Ids[e]] = lumped[targets.Rows[e]];
+  }
+  header.BackwardError = basis.Pairs.MaxBackwardError;
+  header.Residual = basis.Pairs.MaxResidual;
+  header.Warnings = basis.Warnings;
+  writer.Commit(header);
+  H.resize(0, 0);
 }
 
 //------------------------------------------------------------------------------
@@ -586,8 +619,9 @@ void FullRows(const spectral::BasisResult& basis,
 //------------------------------------------------------------------------------
 struct vtkManifoldHarmonicBasis::Solution
 {
-  std::unique_ptr<spectral::BasisResult> Basis; // null: no cells, the input passes through
+  std::unique_ptr<spectral::BasisResult> Basis; // null: no cells, or a reused file
   vtkManifoldHarmonicsParallel::Welding Welding;
+  vtkManifoldHarmonicsBasisFile::Plan File; // Path empty: the basis stays in memory
 };
 
 //------------------------------------------------------------------------------
@@ -609,6 +643,7 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , SlepcPartitions(1)
   , WeldSeams(true)
   , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
+  , Storage(AUTOMATIC)
 {
   this->FrequencyWindow[0] = 0.0;
   this->FrequencyWindow[1] = 0.0;
@@ -647,6 +682,18 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
   vtkPointSet* output,
   vtkTable* vtkNotUsed(table))
 {
+  if ((this->Storage == FILE || !this->BasisFileName.empty()) &&
+    (this->Solver == SLEPC || vtkManifoldHarmonicsParallel::DistributedController()))
+  {
+    // Refused alike on every process, before any collective step.
+    vtkErrorMacro(<< "A basis in a file (Storage File or a BasisFileName) is available in serial "
+                     "runs of the Built-in solver only: choose Storage In Memory or Automatic and "
+                     "leave BasisFileName empty, or compute the basis in a serial run.");
+    return 0;
+  }
+  this->StorageUsed = AUTOMATIC;
+  this->StorageReason.clear();
+  this->BasisReused = false;
   if (this->Solver == SLEPC)
   {
     // Every process takes part, with or without cells.
@@ -719,7 +766,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   if (controller->GetLocalProcessId() == 0)
   {
     Solution solution;
-    status = this->Solve(merged.Surface, false, solution);
+    status = this->Solve(merged.Surface, false, solution, false);
     if (status && solution.Basis)
     {
       ::FullRows(*solution.Basis, merged.Surface->GetNumberOfPoints(), harmonics, mass);
@@ -785,22 +832,38 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
 int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld)
 {
   Solution solution;
-  if (!this->Solve(input, weld, solution))
+  if (!this->Solve(input, weld, solution, true))
   {
     return 0;
   }
   output->ShallowCopy(input);
-  if (solution.Basis)
+  if (solution.Basis || solution.File.Reuse)
   {
     this->SetProgressText("Write");
-    ::WriteBasis(output, input, *solution.Basis, solution.Welding, this->BasisPrecision == FLOAT);
+    if (!this->Guard(
+          [&]()
+          {
+            ::WriteBasis(output,
+              input,
+              solution.Basis.get(),
+              solution.File,
+              solution.Welding,
+              this->BasisPrecision == FLOAT);
+          }))
+    {
+      output->Initialize();
+      return 0;
+    }
   }
   this->UpdateProgress(1.0);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& solution)
+int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
+  bool weld,
+  Solution& solution,
+  bool allowFile)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -829,7 +892,29 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
   }
   this->SolvedPoints = numPts;
   const spectral::Monitor monitor = this->MakeMonitor(0.95);
-  const spectral::BasisOptions options = ::CoreOptions(this);
+  spectral::BasisOptions options = ::CoreOptions(this);
+  if (!allowFile)
+  {
+    this->StorageUsed = IN_MEMORY;
+    this->StorageReason = "in memory: process 0 of a distributed run scatters it";
+  }
+  else if (!vtkManifoldHarmonicsBasisFile::PlanStorage(this,
+             options,
+             cells.Mesh,
+             numPts,
+             solution.File,
+             this->StorageUsed,
+             this->StorageReason))
+  {
+    return 0;
+  }
+  this->FileRefusal = solution.File.Refusal;
+  const int bytesPerValue = options.BytesPerValue;
+  if (!solution.File.Path.empty())
+  {
+    // The output basis is in the file: the memory check of the solve leaves it out.
+    options.BytesPerValue = 0;
+  }
   return this->Guard(
            [&]()
            {
@@ -838,8 +923,22 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
              spectral::TriangleMesh welded;
              const bool merged =
                weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
+             if (solution.File.Reuse)
+             {
+               this->BasisReused = true;
+               for (const std::string& warning : solution.File.Header.Warnings)
+               {
+                 vtkWarningMacro(<< "(reused basis file) " << warning);
+               }
+               return;
+             }
              solution.Basis.reset(new spectral::BasisResult(
                spectral::ComputeBasis(merged ? welded : cells.Mesh, options, monitor)));
+             if (!solution.File.Path.empty())
+             {
+               ::WriteBasisFile(
+                 *solution.Basis, solution.File, solution.Welding, numPts, bytesPerValue);
+             }
            })
     ? 1
     : 0;
@@ -850,7 +949,9 @@ std::string vtkManifoldHarmonicBasis::DescribeFailure(const std::exception& e)
 {
   if (const auto* memory = dynamic_cast<const spectral::InsufficientMemory*>(&e))
   {
-    return ::MemoryProblem(this, this->SolvedPoints, *memory);
+    // With Storage AUTOMATIC: why no file would do either.
+    return ::MemoryProblem(this, this->SolvedPoints, *memory) +
+      (this->FileRefusal.empty() ? std::string() : " " + this->FileRefusal);
   }
   if (dynamic_cast<const spectral::InvalidInput*>(&e))
   {
@@ -904,4 +1005,8 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
   os << indent << "WeldSeams: " << onOff(this->WeldSeams) << "\n";
   os << indent << "SeamTolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
+  os << indent << "Storage: " << Enums::Name(Enums::Storage, this->Storage) << "\n";
+  os << indent << "BasisFileName: \"" << this->BasisFileName << "\""
+     << (this->BasisFileName.empty() ? " (a temporary file when the basis is kept in a file)\n"
+                                     : "\n");
 }

@@ -227,10 +227,12 @@ void StorageChoiceRules()
   c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, GB, 3 * GB, 4 * GB, 10 * GB);
   Check(c.Chosen == BasisStorage::File, "automatic: a file when only the file fits: " + c.Reason);
   c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, GB, 3 * GB, 4 * GB, 2 * GB);
-  Check(c.Chosen == BasisStorage::Automatic && c.Refusal.find("4.0 GiB free") != std::string::npos,
+  Check(c.Chosen == BasisStorage::Automatic &&
+      c.Refusal.find("4.0 GiB file needs a disk") != std::string::npos,
     "automatic: refused, naming the disk room needed: " + c.Refusal);
   c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, 4 * GB, 3 * GB, GB, 10 * GB);
-  Check(c.Chosen == BasisStorage::Automatic && c.Refusal.find("Float") != std::string::npos,
+  Check(c.Chosen == BasisStorage::Automatic &&
+      c.Refusal.find("the solve alone needs about 4.0 GiB") != std::string::npos,
     "automatic: refused when even the solve does not fit: " + c.Refusal);
   c = ChooseBasisStorage(BasisStorage::File, GB, GB, 3 * GB, 4 * GB, 2 * GB);
   Check(c.Chosen == BasisStorage::Automatic && !c.Refusal.empty(),

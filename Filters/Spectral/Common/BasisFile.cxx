@@ -630,11 +630,12 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
     return choice;
   }
   choice.Chosen = BasisStorage::Automatic;
-  choice.Refusal = "Neither in memory (" + memory + ") nor in a file (" + disk + ", " +
-    ByteCount(inFile) +
-    " of memory for the solve) does this basis fit. Compute fewer harmonics, "
-    "set BasisPrecision to Float, raise MemoryLimit, or name a BasisFileName on a disk with " +
-    ByteCount(fileBytes) + " free.";
+  choice.Refusal = "A file would not do either: " +
+    (inFile > available
+        ? "the solve alone needs about " + ByteCount(inFile) + " of memory"
+        : "the " + ByteCount(fileBytes) + " file needs a disk with that much free (" +
+          ByteCount(diskFree) + " free on its disk; name a BasisFileName on another)") +
+    ".";
   return choice;
 }
 
@@ -644,7 +645,8 @@ std::uint64_t FreeDiskSpace(const std::string& directory)
   struct statvfs status;
   if (statvfs(directory.c_str(), &status) != 0)
   {
-    return 0;
+    // Unknown (a missing directory): creating the file will say what is wrong.
+    return ~std::uint64_t(0);
   }
   return static_cast<std::uint64_t>(status.f_bavail) * static_cast<std::uint64_t>(status.f_frsize);
 }

@@ -201,7 +201,8 @@ enum class BasisStorage
 /// What ChooseBasisStorage decided and why (one sentence each).
 struct StorageChoice
 {
-  /// InMemory or File; Automatic when nothing fits (Refusal says what would make it run).
+  /// InMemory or File; Automatic when nothing fits (Refusal says why a file would not do: the
+  /// caller's memory error says the rest).
   BasisStorage Chosen = BasisStorage::InMemory;
   std::string Reason;
   std::string Refusal;
@@ -222,8 +223,8 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
   std::uint64_t fileBytes,
   std::uint64_t diskFree);
 
-/// Bytes free for an unprivileged user on the disk that holds `directory` (statvfs); 0 if
-/// unknown.
+/// Bytes free for an unprivileged user on the disk that holds `directory` (statvfs); the
+/// largest value when unknown (creating the file then reports the fault).
 std::uint64_t FreeDiskSpace(const std::string& directory);
 
 /// The directory of a path ("." for a bare name).
