@@ -65,9 +65,10 @@
  *
  * Memory: before it assembles anything, the filter estimates the memory the computation needs
  * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
- * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed,
- * how much is available and what to change if it does not fit, instead of being killed by the
- * system during a long solve.
+ * formula in Filters/Spectral/Solver/Memory.h); when it does not fit, Storage AUTOMATIC keeps the
+ * basis in a file that the harmonics array maps (see Storage, BasisFileName), and when that does
+ * not fit either it fails with an error saying how much is needed, how much is available and
+ * what to change, instead of being killed by the system during a long solve.
  *
  * The output can be written with the mesh (vtkXMLPolyDataWriter, binary or ASCII data mode) and
  * read back: vtkManifoldHarmonicTransform and vtkSpectralFilter use the arrays read from the
@@ -105,7 +106,8 @@
  * Computer Graphics Forum 27(2), 2008.
  *
  * Tested by Filters/Testing/Cxx/TestManifoldHarmonicBasis.cxx,
- * Filters/Testing/Cxx/TestRobustness.cxx, Filters/Testing/Cxx/TestBasisReuse.cxx and
+ * Filters/Testing/Cxx/TestRobustness.cxx, Filters/Testing/Cxx/TestBasisReuse.cxx,
+ * Filters/Testing/Cxx/TestBasisFile.cxx and
  * Filters/Testing/Python/TestManifoldHarmonicBasis.py.
  *
  * @sa
@@ -323,8 +325,10 @@ public:
    * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
    * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
    * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it,
-   * the filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
-   * FLOAT or a smaller BandSize) and produces an empty output. Set a limit to keep room for other
+   * Storage AUTOMATIC keeps the basis in a file (whose mapped pages are page cache, not counted),
+   * and when the solve alone exceeds it the filter reports an error (how much is needed and
+   * available; fewer harmonics, BasisPrecision FLOAT or a smaller BandSize) and produces an
+   * empty output. Set a limit to keep room for other
    * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
    */
   vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);

@@ -399,10 +399,14 @@ BasisFileWriter::BasisFileWriter(const std::string& path, const BasisFileHeader&
       BasisFileError::Kind::Io, SystemError("cannot create the basis file", this->Partial));
   }
   this->MappedBytes = this->Header.PayloadBytes();
-  if (ftruncate(
-        this->Descriptor, static_cast<off_t>(this->Header.PayloadOffset + this->MappedBytes)) != 0)
+  // Blocks allocated now: a disk that fills up is an error here, not a SIGBUS when a band is
+  // written through the mapping.
+  const int allocated = posix_fallocate(
+    this->Descriptor, 0, static_cast<off_t>(this->Header.PayloadOffset + this->MappedBytes));
+  if (allocated != 0)
   {
-    const std::string message = SystemError("cannot size the basis file", this->Partial);
+    errno = allocated;
+    const std::string message = SystemError("cannot allocate the basis file", this->Partial);
     this->Discard();
     throw BasisFileError(BasisFileError::Kind::Io, message);
   }
@@ -462,25 +466,32 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
   {
     throw std::out_of_range("BasisFileWriter::WriteColumns: columns beyond m");
   }
-  const bool floats = this->Header.BytesPerValue == 4;
-  for (std::size_t e = 0; e < targets.size(); ++e)
+  // Blocks of rows: each column of the band is read in order over a block, and the block's
+  // rows of the file (m values each) stay in the cache and the TLB. A row at a time would read
+  // the band across its columns, n values apart: a cache and TLB miss per value (10 times
+  // slower on 200K x 500).
+  const std::size_t block = 256;
+  for (std::size_t begin = 0; begin < targets.size(); begin += block)
   {
-    const double* source = values + sources[e];
-    const std::uint64_t first = static_cast<std::uint64_t>(targets[e]) * m + firstColumn;
-    if (floats)
+    const std::size_t end = std::min(targets.size(), begin + block);
+    for (std::uint64_t k = 0; k < count; ++k)
     {
-      float* row = reinterpret_cast<float*>(this->Payload) + first;
-      for (std::uint64_t k = 0; k < count; ++k)
+      const double* column = values + k * rows;
+      if (this->Header.BytesPerValue == 4)
       {
-        row[k] = static_cast<float>(source[k * rows]);
+        float* out = reinterpret_cast<float*>(this->Payload) + firstColumn + k;
+        for (std::size_t e = begin; e < end; ++e)
+        {
+          out[static_cast<std::uint64_t>(targets[e]) * m] = static_cast<float>(column[sources[e]]);
+        }
       }
-    }
-    else
-    {
-      double* row = reinterpret_cast<double*>(this->Payload) + first;
-      for (std::uint64_t k = 0; k < count; ++k)
+      else
       {
-        row[k] = source[k * rows];
+        double* out = reinterpret_cast<double*>(this->Payload) + firstColumn + k;
+        for (std::size_t e = begin; e < end; ++e)
+        {
+          out[static_cast<std::uint64_t>(targets[e]) * m] = column[sources[e]];
+        }
       }
     }
   }
