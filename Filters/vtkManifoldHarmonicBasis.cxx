@@ -563,8 +563,44 @@ void WriteBasis(vtkPointSet* output,
 }
 
 //------------------------------------------------------------------------------
-// Writes the core's basis into the file of `plan` (atomically: see spectral::BasisFileWriter),
-// each row on its point or on every copy of a welded point, then frees the harmonics in memory.
+// The header of a new basis file of `plan`: n, b, digest and options (m comes with the basis).
+spectral::BasisFileHeader FileHeader(const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  spectral::BasisFileHeader header;
+  header.Rows = static_cast<std::uint64_t>(numPts);
+  header.BytesPerValue = static_cast<std::uint32_t>(bytesPerValue);
+  header.MeshDigest = plan.Digest;
+  header.Options = plan.Options;
+  return header;
+}
+
+//------------------------------------------------------------------------------
+// Completes a basis file: the eigenvalues, the mass on the output's points, the figures and the
+// warnings of `basis` in its header, then the atomic commit.
+void CommitBasisFile(spectral::BasisFileWriter& writer,
+  spectral::BasisFileHeader& header,
+  const spectral::BasisResult& basis,
+  const RowsToPoints& targets)
+{
+  header.Eigenvalues.assign(
+    basis.Pairs.Eigenvalues.data(), basis.Pairs.Eigenvalues.data() + header.Columns);
+  header.Mass.assign(header.Rows, 0.0);
+  for (std::size_t e = 0; e < targets.Ids.size(); ++e)
+  {
+    header.Mass[targets.Ids[e]] = basis.LumpedMass[targets.Rows[e]];
+  }
+  header.BackwardError = basis.Pairs.MaxBackwardError;
+  header.Residual = basis.Pairs.MaxResidual;
+  header.Warnings = basis.Warnings;
+  writer.Commit(header);
+}
+
+//------------------------------------------------------------------------------
+// Writes the core's basis (computed in memory: a frequency window, which is not streamed) into
+// the file of `plan`, each row on its point or on every copy of a welded point, then frees the
+// harmonics in memory.
 void WriteBasisFile(spectral::BasisResult& basis,
   const vtkManifoldHarmonicsBasisFile::Plan& plan,
   const vtkManifoldHarmonicsParallel::Welding& welding,
@@ -574,27 +610,64 @@ void WriteBasisFile(spectral::BasisResult& basis,
   spectral::DenseMatrix& H = basis.Pairs.Eigenvectors;
   const RowsToPoints targets =
     Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
-  spectral::BasisFileHeader header;
-  header.Rows = static_cast<std::uint64_t>(numPts);
+  spectral::BasisFileHeader header = FileHeader(plan, numPts, bytesPerValue);
   header.Columns = static_cast<std::uint64_t>(H.cols());
-  header.BytesPerValue = static_cast<std::uint32_t>(bytesPerValue);
-  header.MeshDigest = plan.Digest;
-  header.Options = plan.Options;
   spectral::BasisFileWriter writer(plan.Path, header);
   writer.WriteColumns(0, header.Columns, H.data(), H.rows(), targets.Rows, targets.Ids);
-  const spectral::Vector& lumped = basis.LumpedMass;
-  header.Eigenvalues.assign(
-    basis.Pairs.Eigenvalues.data(), basis.Pairs.Eigenvalues.data() + header.Columns);
-  header.Mass.assign(header.Rows, 0.0);
-  for (std::size_t e = 0; e < targets.Ids.size(); ++e)
-  {
-    header.Mass[targets.Ids[e]] = lumped[targets.Rows[e]];
-  }
-  header.BackwardError = basis.Pairs.MaxBackwardError;
-  header.Residual = basis.Pairs.MaxResidual;
-  header.Warnings = basis.Warnings;
-  writer.Commit(header);
+  CommitBasisFile(writer, header, basis, targets);
   H.resize(0, 0);
+}
+
+//------------------------------------------------------------------------------
+// Computes the basis of `mesh` streamed into the file of `plan` (spectral::BasisSink): each
+// verified block of harmonics is written as it comes, and the n x m basis is never in memory.
+// The file is sized when the stream begins: m is the number of eigenvalues when the core knows
+// them, else the requested number clamped to the usable points (ClampHarmonics, Problem.h),
+// checked against what came at the end. Returns the basis without harmonics.
+spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
+  spectral::BasisOptions options,
+  const spectral::Monitor& monitor,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  const vtkManifoldHarmonicsParallel::Welding& welding,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  std::unique_ptr<spectral::BasisFileWriter> writer;
+  RowsToPoints targets;
+  spectral::BasisFileHeader header = FileHeader(plan, numPts, bytesPerValue);
+  const int requested = options.NumberOfHarmonics;
+  options.Sink.Begin = [&](const spectral::BasisResult& begun)
+  {
+    targets = Targets(
+      begun.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
+    const long long usable =
+      static_cast<long long>(begun.InputPointIds.size()) - begun.BoundaryPoints;
+    header.Columns = static_cast<std::uint64_t>(begun.Pairs.Eigenvalues.size() > 0
+        ? static_cast<long long>(begun.Pairs.Eigenvalues.size())
+        : std::min<long long>(requested, usable));
+    writer.reset(new spectral::BasisFileWriter(plan.Path, header));
+  };
+  options.Sink.Harmonics =
+    [&](int first, const spectral::Vector& values, const spectral::DenseMatrix& harmonics)
+  {
+    writer->WriteColumns(static_cast<std::uint64_t>(first),
+      static_cast<std::uint64_t>(values.size()),
+      harmonics.data(),
+      static_cast<std::uint64_t>(harmonics.rows()),
+      targets.Rows,
+      targets.Ids);
+  };
+  // Every harmonic comes again: the file's columns are overwritten.
+  options.Sink.Restart = []() {};
+  spectral::BasisResult basis = spectral::ComputeBasis(mesh, options, monitor);
+  if (!writer || static_cast<std::uint64_t>(basis.Pairs.Eigenvalues.size()) != header.Columns)
+  {
+    throw std::runtime_error("the streamed basis has " +
+      std::to_string(basis.Pairs.Eigenvalues.size()) + " harmonics, its file was sized for " +
+      std::to_string(header.Columns) + " (please report this)");
+  }
+  CommitBasisFile(*writer, header, basis, targets);
+  return basis;
 }
 
 //------------------------------------------------------------------------------
@@ -910,7 +983,7 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
   }
   this->FileRefusal = solution.File.Refusal;
   const int bytesPerValue = options.BytesPerValue;
-  if (!solution.File.Path.empty())
+  if (!solution.File.Path.empty() && !solution.File.Streamed)
   {
     // The output basis is in the file: the memory check of the solve leaves it out.
     options.BytesPerValue = 0;
@@ -932,8 +1005,20 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
                }
                return;
              }
-             solution.Basis.reset(new spectral::BasisResult(
-               spectral::ComputeBasis(merged ? welded : cells.Mesh, options, monitor)));
+             const spectral::TriangleMesh& solved = merged ? welded : cells.Mesh;
+             if (solution.File.Streamed)
+             {
+               solution.Basis.reset(new spectral::BasisResult(::StreamBasisToFile(solved,
+                 options,
+                 monitor,
+                 solution.File,
+                 solution.Welding,
+                 numPts,
+                 bytesPerValue)));
+               return;
+             }
+             solution.Basis.reset(
+               new spectral::BasisResult(spectral::ComputeBasis(solved, options, monitor)));
              if (!solution.File.Path.empty())
              {
                ::WriteBasisFile(

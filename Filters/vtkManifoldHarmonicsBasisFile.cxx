@@ -198,8 +198,15 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   const std::uint64_t inMemory = spectral::EstimateBasisMemory(
     n, n, m, options.Solver.BandSize, options.BytesPerValue, true, volume)
                                    .Total();
-  const std::uint64_t inFile =
+  // Into a file, the basis is streamed (never whole in memory) when that needs less memory than
+  // computing it in memory and writing it: when m is above the three bands of the blocks in
+  // delivery (Memory.h). A frequency window is not streamed.
+  const std::uint64_t written =
     spectral::EstimateBasisMemory(n, n, m, options.Solver.BandSize, 0, true, volume).Total();
+  const std::uint64_t streaming =
+    spectral::EstimateStreamedMemory(n, n, m, options.Solver.BandSize, volume).Total();
+  const bool streamed = options.UpperFrequency <= 0.0 && streaming <= written;
+  const std::uint64_t inFile = streamed ? streaming : written;
   const std::uint64_t available =
     options.MemoryLimit > 0 ? options.MemoryLimit : spectral::AvailableMemory();
   const std::string path = name.empty() ? TemporaryPath() : name;
@@ -216,8 +223,10 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   {
     plan.Path = path;
     plan.Temporary = name.empty();
+    plan.Streamed = streamed;
     used = vtkManifoldHarmonicBasis::FILE;
-    reason = "the basis is kept " + choice.Reason + ", in '" + path + "'";
+    reason = "the basis is kept " + choice.Reason + ", in '" + path + "', " +
+      (streamed ? "streamed into it band by band" : "computed in memory, then written");
     if (requested == vtkManifoldHarmonicBasis::AUTOMATIC)
     {
       vtkWarningWithObjectMacro(self, << "Storage Automatic: " << reason << ".");

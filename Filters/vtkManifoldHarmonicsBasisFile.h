@@ -42,6 +42,9 @@ struct Plan
   bool Temporary = false;
   /// Whether the named file holds this basis already (no solve).
   bool Reuse = false;
+  /// Whether the basis is streamed into the file (spectral::BasisSink: never whole in memory);
+  /// false for a frequency window, which is computed in memory and then written.
+  bool Streamed = false;
   /// The checked header of the reused file.
   spectral::BasisFileHeader Header;
   /// The digest of the mesh and the options text that a new file records.
