@@ -57,6 +57,7 @@ def main():
     parser.add_argument("--storage", choices=["memory", "file"], default="memory")
     parser.add_argument("--file", default="")
     parser.add_argument("--float", action="store_true")
+    parser.add_argument("--band-size", type=int, default=0)
     args = parser.parse_args()
     mesh = torus(args.points)
     base = status()
@@ -66,6 +67,7 @@ def main():
     basis.SetStorage(basis.FILE if args.storage == "file" else basis.IN_MEMORY)
     if args.float:
         basis.SetBasisPrecisionToFloat()
+    basis.SetBandSize(args.band_size)
     if args.file:
         basis.SetBasisFileName(args.file)
     start = time.time()
@@ -85,9 +87,9 @@ def main():
     spectral.Update()
     seconds["changed filter"] = time.time() - start
     after["changed filter"] = status()
-    print("%d points x %d harmonics, %s%s: %s" % (
+    print("%d points x %d harmonics, %s%s, band size %d: %s" % (
         mesh.GetNumberOfPoints(), args.harmonics, args.storage, " float" if args.float else "",
-        basis.GetStorageReason()))
+        args.band_size, basis.GetStorageReason()))
     for stage in seconds:
         s = after[stage]
         print("  %-17s %7.1f s  peak %7.0f MiB  RssAnon %7.0f MiB  RssFile %7.0f MiB (above baseline)"
