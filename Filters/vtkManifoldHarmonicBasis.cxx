@@ -540,12 +540,20 @@ void WriteBasis(vtkPointSet* output,
   const vtkIdType numPts = input->GetNumberOfPoints();
   if (!plan.Path.empty())
   {
+    // A temporary file goes once mapped, and also when it cannot be.
+    struct Remover
+    {
+      const vtkManifoldHarmonicsBasisFile::Plan& File;
+      ~Remover()
+      {
+        if (this->File.Temporary)
+        {
+          std::remove(this->File.Path.c_str());
+        }
+      }
+    } remover{ plan };
     vtkManifoldHarmonicsBasisFile::AddFileArrays(
       output, plan.Path, plan.Reuse ? plan.Header : spectral::ReadBasisFileHeader(plan.Path));
-    if (plan.Temporary)
-    {
-      std::remove(plan.Path.c_str());
-    }
   }
   else
   {
