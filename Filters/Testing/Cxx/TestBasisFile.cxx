@@ -454,6 +454,31 @@ bool AbortLeavesNoFile()
 }
 
 //------------------------------------------------------------------------------
+// A frequency window is not streamed: computed in memory, then written; the same basis.
+bool WindowWritten()
+{
+  auto mesh = MakeSphere();
+  vtkNew<vtkManifoldHarmonicBasis> memory;
+  memory->SetInputData(mesh);
+  memory->SetFrequencyWindow(2.0, 5.0);
+  memory->Update();
+  vtkNew<vtkManifoldHarmonicBasis> file;
+  file->SetInputData(mesh);
+  file->SetFrequencyWindow(2.0, 5.0);
+  file->SetStorageToFile();
+  const ManifoldHarmonicsTest::Messages messages(file);
+  file->Update();
+  const std::string reason = file->GetStorageReason();
+  const int m = HarmonicsOf(memory) ? HarmonicsOf(memory)->GetNumberOfComponents() : 0;
+  return Check(!messages->GetError() && m > 0 &&
+      reason.find("computed in memory, then written") != std::string::npos &&
+      MappingOf(HarmonicsOf(file)->GetVoidPointer(0)).find(" r--s ") != std::string::npos &&
+      MaxDifference(EigenvaluesOf(file), EigenvaluesOf(memory)) == 0.0,
+    "a window's basis is written into the file after its solve: " + reason + " (" +
+      std::to_string(m) + " harmonics)");
+}
+
+//------------------------------------------------------------------------------
 bool RefusedWithSlepc()
 {
   vtkNew<vtkManifoldHarmonicBasis> basis;
@@ -485,6 +510,7 @@ int TestBasisFile(int argc, char* argv[])
       { "Reuse", Reuse },
       { "DamagedAndForeignFiles", DamagedAndForeignFiles },
       { "AbortLeavesNoFile", AbortLeavesNoFile },
+      { "WindowWritten", WindowWritten },
       { "RefusedWithSlepc", RefusedWithSlepc },
     });
 }
