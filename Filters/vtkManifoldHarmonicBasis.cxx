@@ -13,6 +13,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
+#include "vtkManifoldHarmonicsBasisFile.h"
 #include "vtkManifoldHarmonicsEnums.h"
 #include "vtkManifoldHarmonicsGhosts.h"
 #include "vtkManifoldHarmonicsNames.h"
@@ -31,6 +32,7 @@
 #include "vtkVersionMacros.h"
 
 #include "Spectral/Basis.h"
+#include "Spectral/Common/BasisFile.h"
 
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
 #include "vtkManifoldHarmonicsSlepc.h"
@@ -38,7 +40,7 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <iomanip>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -63,7 +65,7 @@ namespace
 struct RowsToPoints
 {
   std::vector<int> Rows;
-  std::vector<vtkIdType> Ids;
+  std::vector<std::int64_t> Ids;
 };
 
 //------------------------------------------------------------------------------
@@ -161,10 +163,7 @@ void AddHarmonicsArray(vtkDataSet* output,
   {
     harmonics = ScatterToPoints<vtkDoubleArray>(name, H, ids, numPts);
   }
-  for (Eigen::Index k = 0; k < H.cols(); ++k)
-  {
-    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
-  }
+  vtkManifoldHarmonicsBasisFile::NameHarmonics(harmonics);
   output->GetPointData()->AddArray(harmonics);
 }
 
@@ -185,21 +184,8 @@ void AddBasisArrays(vtkDataSet* output,
   }
   output->GetPointData()->AddArray(ScatterToPoints<vtkDoubleArray>(
     vtkManifoldHarmonicBasis::MassArrayName(), lumped, ids, numPts));
-
-  vtkNew<vtkDoubleArray> eigenvalues;
-  eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
-  eigenvalues->SetNumberOfTuples(m);
-  std::copy(result.Eigenvalues.data(), result.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
-  output->GetFieldData()->AddArray(eigenvalues);
-  for (const auto& figure :
-    { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
-      std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual) })
-  {
-    vtkNew<vtkDoubleArray> array;
-    array->SetName(figure.first);
-    array->InsertNextValue(figure.second);
-    output->GetFieldData()->AddArray(array);
-  }
+  vtkManifoldHarmonicsBasisFile::AddSpectrumArrays(
+    output, result.Eigenvalues.data(), m, result.MaxBackwardError, result.MaxResidual);
 }
 
 //------------------------------------------------------------------------------
@@ -314,11 +300,7 @@ void AddPieceArrays(vtkPointSet* output,
     harmonics = vtkSmartPointer<vtkFloatArray>::New();
     harmonics->DeepCopy(rows.Harmonics);
   }
-  harmonics->SetName(vtkManifoldHarmonicBasis::HarmonicsArrayName());
-  for (int k = 0; k < m; ++k)
-  {
-    harmonics->SetComponentName(k, ("Phi_" + std::to_string(k)).c_str());
-  }
+  vtkManifoldHarmonicsBasisFile::NameHarmonics(harmonics);
   rows.Mass->SetName(vtkManifoldHarmonicBasis::MassArrayName());
   output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
@@ -329,23 +311,6 @@ void AddPieceArrays(vtkPointSet* output,
   eigenvalues->SetNumberOfTuples(m);
   std::copy(rows.Eigenvalues.data(), rows.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
   output->GetFieldData()->AddArray(eigenvalues);
-}
-
-//------------------------------------------------------------------------------
-// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
-std::string Bytes(std::uint64_t bytes)
-{
-  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4)
-  {
-    value /= 1024.0;
-    ++unit;
-  }
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
-  return text.str();
 }
 
 //------------------------------------------------------------------------------
@@ -361,14 +326,17 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   const spectral::MemoryEstimate& need = e.Needed;
   std::ostringstream message;
   message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
-          << Bytes(need.Total()) << " needed (basis " << Bytes(need.Basis)
-          << ", solver eigenvectors " << Bytes(need.Eigenvectors) << ", Lanczos workspace "
-          << Bytes(need.Krylov) << ", sparse factor " << Bytes(need.Factor) << "), "
-          << Bytes(e.Available) << " available ("
-          << (limited ? "MemoryLimit" : "reported by the system") << "). Compute fewer harmonics";
+          << spectral::ByteCount(need.Total()) << " needed (basis "
+          << spectral::ByteCount(need.Basis) << ", solver eigenvectors "
+          << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace "
+          << spectral::ByteCount(need.Krylov) << ", sparse factor "
+          << spectral::ByteCount(need.Factor) << "), " << spectral::ByteCount(e.Available)
+          << " available (" << (limited ? "MemoryLimit" : "reported by the system")
+          << "). Compute fewer harmonics";
   if (!floats)
   {
-    message << ", set BasisPrecision to Float (saves " << Bytes(need.Basis / 2) << ")";
+    message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
+            << ")";
   }
   message << ", choose a smaller BandSize (now "
           << spectral::EffectiveBandSize(m, self->GetBandSize()) << ")"
@@ -560,22 +528,154 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
 //------------------------------------------------------------------------------
 // The basis of the core on `output` (a shallow copy of `input`): each row on its point, or on
 // every copy of a welded point (the copies but one flagged as duplicates).
+// A basis kept in a file (`plan.Path`) is mapped from it instead (its header read back and
+// checked, or the reused file's); a temporary file is unlinked once mapped.
 void WriteBasis(vtkPointSet* output,
   vtkPointSet* input,
-  const spectral::BasisResult& basis,
+  const spectral::BasisResult* basis,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
   const vtkManifoldHarmonicsParallel::Welding& welding,
   bool floats)
 {
   const vtkIdType numPts = input->GetNumberOfPoints();
-  AddBasisArrays(output,
-    basis.Pairs,
-    Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
-    basis.LumpedMass,
-    floats);
+  if (!plan.Path.empty())
+  {
+    // A temporary file goes once mapped, and also when it cannot be.
+    struct Remover
+    {
+      const vtkManifoldHarmonicsBasisFile::Plan& File;
+      ~Remover()
+      {
+        if (this->File.Temporary)
+        {
+          std::remove(this->File.Path.c_str());
+        }
+      }
+    } remover{ plan };
+    vtkManifoldHarmonicsBasisFile::AddFileArrays(
+      output, plan.Path, plan.Reuse ? plan.Header : spectral::ReadBasisFileHeader(plan.Path));
+  }
+  else
+  {
+    AddBasisArrays(output,
+      basis->Pairs,
+      Targets(
+        basis->InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts),
+      basis->LumpedMass,
+      floats);
+  }
   if (welding.Merged())
   {
     AddPointGhosts(output, input, WeldedDuplicates(welding));
   }
+}
+
+//------------------------------------------------------------------------------
+// The header of a new basis file of `plan`: n, b, digest and options (m comes with the basis).
+spectral::BasisFileHeader FileHeader(const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  spectral::BasisFileHeader header;
+  header.Rows = static_cast<std::uint64_t>(numPts);
+  header.BytesPerValue = static_cast<std::uint32_t>(bytesPerValue);
+  header.MeshDigest = plan.Digest;
+  header.Options = plan.Options;
+  return header;
+}
+
+//------------------------------------------------------------------------------
+// Completes a basis file: the eigenvalues, the mass on the output's points, the figures and the
+// warnings of `basis` in its header, then the atomic commit.
+void CommitBasisFile(spectral::BasisFileWriter& writer,
+  spectral::BasisFileHeader& header,
+  const spectral::BasisResult& basis,
+  const RowsToPoints& targets)
+{
+  header.Eigenvalues.assign(
+    basis.Pairs.Eigenvalues.data(), basis.Pairs.Eigenvalues.data() + header.Columns);
+  header.Mass.assign(header.Rows, 0.0);
+  for (std::size_t e = 0; e < targets.Ids.size(); ++e)
+  {
+    header.Mass[targets.Ids[e]] = basis.LumpedMass[targets.Rows[e]];
+  }
+  header.BackwardError = basis.Pairs.MaxBackwardError;
+  header.Residual = basis.Pairs.MaxResidual;
+  header.Warnings = basis.Warnings;
+  writer.Commit(header);
+}
+
+//------------------------------------------------------------------------------
+// Writes the core's basis (computed in memory: a frequency window, which is not streamed) into
+// the file of `plan`, each row on its point or on every copy of a welded point, then frees the
+// harmonics in memory.
+void WriteBasisFile(spectral::BasisResult& basis,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  const vtkManifoldHarmonicsParallel::Welding& welding,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  spectral::DenseMatrix& H = basis.Pairs.Eigenvectors;
+  const RowsToPoints targets =
+    Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
+  spectral::BasisFileHeader header = FileHeader(plan, numPts, bytesPerValue);
+  header.Columns = static_cast<std::uint64_t>(H.cols());
+  spectral::BasisFileWriter writer(plan.Path, header);
+  writer.WriteColumns(0, header.Columns, H.data(), H.rows(), targets.Rows, targets.Ids);
+  CommitBasisFile(writer, header, basis, targets);
+  H.resize(0, 0);
+}
+
+//------------------------------------------------------------------------------
+// Computes the basis of `mesh` streamed into the file of `plan` (spectral::BasisSink): each
+// verified block of harmonics is written as it comes, and the n x m basis is never in memory.
+// The file is sized when the stream begins: m is the number of eigenvalues when the core knows
+// them, else the requested number clamped to the usable points (ClampHarmonics, Problem.h),
+// checked against what came at the end. Returns the basis without harmonics.
+spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
+  spectral::BasisOptions options,
+  const spectral::Monitor& monitor,
+  const vtkManifoldHarmonicsBasisFile::Plan& plan,
+  const vtkManifoldHarmonicsParallel::Welding& welding,
+  vtkIdType numPts,
+  int bytesPerValue)
+{
+  std::unique_ptr<spectral::BasisFileWriter> writer;
+  RowsToPoints targets;
+  spectral::BasisFileHeader header = FileHeader(plan, numPts, bytesPerValue);
+  const int requested = options.NumberOfHarmonics;
+  options.Sink.Begin = [&](const spectral::BasisResult& begun)
+  {
+    targets = Targets(
+      begun.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
+    const long long usable =
+      static_cast<long long>(begun.InputPointIds.size()) - begun.BoundaryPoints;
+    header.Columns = static_cast<std::uint64_t>(begun.Pairs.Eigenvalues.size() > 0
+        ? static_cast<long long>(begun.Pairs.Eigenvalues.size())
+        : std::min<long long>(requested, usable));
+    writer.reset(new spectral::BasisFileWriter(plan.Path, header));
+  };
+  options.Sink.Harmonics =
+    [&](int first, const spectral::Vector& values, const spectral::DenseMatrix& harmonics)
+  {
+    writer->WriteColumns(static_cast<std::uint64_t>(first),
+      static_cast<std::uint64_t>(values.size()),
+      harmonics.data(),
+      static_cast<std::uint64_t>(harmonics.rows()),
+      targets.Rows,
+      targets.Ids);
+  };
+  // Every harmonic comes again: the file's columns are overwritten.
+  options.Sink.Restart = []() {};
+  spectral::BasisResult basis = spectral::ComputeBasis(mesh, options, monitor);
+  if (!writer || static_cast<std::uint64_t>(basis.Pairs.Eigenvalues.size()) != header.Columns)
+  {
+    throw std::runtime_error("the streamed basis has " +
+      std::to_string(basis.Pairs.Eigenvalues.size()) + " harmonics, its file was sized for " +
+      std::to_string(header.Columns) + " (please report this)");
+  }
+  CommitBasisFile(*writer, header, basis, targets);
+  return basis;
 }
 
 //------------------------------------------------------------------------------
@@ -600,8 +700,9 @@ void FullRows(const spectral::BasisResult& basis,
 //------------------------------------------------------------------------------
 struct vtkManifoldHarmonicBasis::Solution
 {
-  std::unique_ptr<spectral::BasisResult> Basis; // null: no cells, the input passes through
+  std::unique_ptr<spectral::BasisResult> Basis; // null: no cells, or a reused file
   vtkManifoldHarmonicsParallel::Welding Welding;
+  vtkManifoldHarmonicsBasisFile::Plan File; // Path empty: the basis stays in memory
 };
 
 //------------------------------------------------------------------------------
@@ -623,6 +724,7 @@ vtkManifoldHarmonicBasis::vtkManifoldHarmonicBasis()
   , SlepcPartitions(1)
   , WeldSeams(true)
   , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
+  , Storage(AUTOMATIC)
 {
   this->FrequencyWindow[0] = 0.0;
   this->FrequencyWindow[1] = 0.0;
@@ -661,6 +763,18 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
   vtkPointSet* output,
   vtkTable* vtkNotUsed(table))
 {
+  if ((this->Storage == FILE || !this->BasisFileName.empty()) &&
+    (this->Solver == SLEPC || vtkManifoldHarmonicsParallel::DistributedController()))
+  {
+    // Refused alike on every process, before any collective step.
+    vtkErrorMacro(<< "A basis in a file (Storage File or a BasisFileName) is available in serial "
+                     "runs of the Built-in solver only: choose Storage In Memory or Automatic and "
+                     "leave BasisFileName empty, or compute the basis in a serial run.");
+    return 0;
+  }
+  this->StorageUsed = AUTOMATIC;
+  this->StorageReason.clear();
+  this->BasisReused = false;
   if (this->Solver == SLEPC)
   {
     // Every process takes part, with or without cells.
@@ -733,7 +847,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   if (controller->GetLocalProcessId() == 0)
   {
     Solution solution;
-    status = this->Solve(merged.Surface, false, solution);
+    status = this->Solve(merged.Surface, false, solution, false);
     if (status && solution.Basis)
     {
       ::FullRows(*solution.Basis, merged.Surface->GetNumberOfPoints(), harmonics, mass);
@@ -799,22 +913,38 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
 int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld)
 {
   Solution solution;
-  if (!this->Solve(input, weld, solution))
+  if (!this->Solve(input, weld, solution, true))
   {
     return 0;
   }
   output->ShallowCopy(input);
-  if (solution.Basis)
+  if (solution.Basis || solution.File.Reuse)
   {
     this->SetProgressText("Write");
-    ::WriteBasis(output, input, *solution.Basis, solution.Welding, this->BasisPrecision == FLOAT);
+    if (!this->Guard(
+          [&]()
+          {
+            ::WriteBasis(output,
+              input,
+              solution.Basis.get(),
+              solution.File,
+              solution.Welding,
+              this->BasisPrecision == FLOAT);
+          }))
+    {
+      output->Initialize();
+      return 0;
+    }
   }
   this->UpdateProgress(1.0);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& solution)
+int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
+  bool weld,
+  Solution& solution,
+  bool allowFile)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -843,7 +973,29 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
   }
   this->SolvedPoints = numPts;
   const spectral::Monitor monitor = this->MakeMonitor(0.95);
-  const spectral::BasisOptions options = ::CoreOptions(this);
+  spectral::BasisOptions options = ::CoreOptions(this);
+  if (!allowFile)
+  {
+    this->StorageUsed = IN_MEMORY;
+    this->StorageReason = "in memory: process 0 of a distributed run scatters it";
+  }
+  else if (!vtkManifoldHarmonicsBasisFile::PlanStorage(this,
+             options,
+             cells.Mesh,
+             numPts,
+             solution.File,
+             this->StorageUsed,
+             this->StorageReason))
+  {
+    return 0;
+  }
+  this->FileRefusal = solution.File.Refusal;
+  const int bytesPerValue = options.BytesPerValue;
+  if (!solution.File.Path.empty() && !solution.File.Streamed)
+  {
+    // The output basis is in the file: the memory check of the solve leaves it out.
+    options.BytesPerValue = 0;
+  }
   return this->Guard(
            [&]()
            {
@@ -852,8 +1004,34 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
              spectral::TriangleMesh welded;
              const bool merged =
                weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
-             solution.Basis.reset(new spectral::BasisResult(
-               spectral::ComputeBasis(merged ? welded : cells.Mesh, options, monitor)));
+             if (solution.File.Reuse)
+             {
+               this->BasisReused = true;
+               for (const std::string& warning : solution.File.Header.Warnings)
+               {
+                 vtkWarningMacro(<< "(reused basis file) " << warning);
+               }
+               return;
+             }
+             const spectral::TriangleMesh& solved = merged ? welded : cells.Mesh;
+             if (solution.File.Streamed)
+             {
+               solution.Basis.reset(new spectral::BasisResult(::StreamBasisToFile(solved,
+                 options,
+                 monitor,
+                 solution.File,
+                 solution.Welding,
+                 numPts,
+                 bytesPerValue)));
+               return;
+             }
+             solution.Basis.reset(
+               new spectral::BasisResult(spectral::ComputeBasis(solved, options, monitor)));
+             if (!solution.File.Path.empty())
+             {
+               ::WriteBasisFile(
+                 *solution.Basis, solution.File, solution.Welding, numPts, bytesPerValue);
+             }
            })
     ? 1
     : 0;
@@ -864,7 +1042,9 @@ std::string vtkManifoldHarmonicBasis::DescribeFailure(const std::exception& e)
 {
   if (const auto* memory = dynamic_cast<const spectral::InsufficientMemory*>(&e))
   {
-    return ::MemoryProblem(this, this->SolvedPoints, *memory);
+    // With Storage AUTOMATIC: why no file would do either.
+    return ::MemoryProblem(this, this->SolvedPoints, *memory) +
+      (this->FileRefusal.empty() ? std::string() : " " + this->FileRefusal);
   }
   if (dynamic_cast<const spectral::InvalidInput*>(&e))
   {
@@ -918,4 +1098,8 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
   os << indent << "WeldSeams: " << onOff(this->WeldSeams) << "\n";
   os << indent << "SeamTolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
+  os << indent << "Storage: " << Enums::Name(Enums::Storage, this->Storage) << "\n";
+  os << indent << "BasisFileName: \"" << this->BasisFileName << "\""
+     << (this->BasisFileName.empty() ? " (a temporary file when the basis is kept in a file)\n"
+                                     : "\n");
 }

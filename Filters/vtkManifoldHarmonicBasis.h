@@ -65,9 +65,10 @@
  *
  * Memory: before it assembles anything, the filter estimates the memory the computation needs
  * (the output basis, the solver's eigenvectors, its Lanczos workspace and the sparse factor;
- * formula in Filters/Spectral/Solver/Memory.h) and fails with an error saying how much is needed,
- * how much is available and what to change if it does not fit, instead of being killed by the
- * system during a long solve.
+ * formula in Filters/Spectral/Solver/Memory.h); when it does not fit, Storage AUTOMATIC keeps the
+ * basis in a file that the harmonics array maps (see Storage, BasisFileName), and when that does
+ * not fit either it fails with an error saying how much is needed, how much is available and
+ * what to change, instead of being killed by the system during a long solve.
  *
  * The output can be written with the mesh (vtkXMLPolyDataWriter, binary or ASCII data mode) and
  * read back: vtkManifoldHarmonicTransform and vtkSpectralFilter use the arrays read from the
@@ -105,7 +106,8 @@
  * Computer Graphics Forum 27(2), 2008.
  *
  * Tested by Filters/Testing/Cxx/TestManifoldHarmonicBasis.cxx,
- * Filters/Testing/Cxx/TestRobustness.cxx, Filters/Testing/Cxx/TestBasisReuse.cxx and
+ * Filters/Testing/Cxx/TestRobustness.cxx, Filters/Testing/Cxx/TestBasisReuse.cxx,
+ * Filters/Testing/Cxx/TestBasisFile.cxx and
  * Filters/Testing/Python/TestManifoldHarmonicBasis.py.
  *
  * @sa
@@ -118,7 +120,7 @@
 #include "vtkManifoldHarmonicsAlgorithm.h"
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 
-#include <string> // For SlepcOptions
+#include <string> // For SlepcOptions, BasisFileName
 
 class vtkMultiProcessController;
 class vtkPointSet;
@@ -323,12 +325,77 @@ public:
    * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
    * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
    * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it,
-   * the filter reports an error (how much is needed and available; fewer harmonics, BasisPrecision
-   * FLOAT or a smaller BandSize) and produces an empty output. Set a limit to keep room for other
+   * Storage AUTOMATIC keeps the basis in a file (whose mapped pages are page cache, not counted),
+   * and when the solve alone exceeds it the filter reports an error (how much is needed and
+   * available; fewer harmonics, BasisPrecision FLOAT or a smaller BandSize) and produces an
+   * empty output. Set a limit to keep room for other
    * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
    */
   vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  /**
+   * Where the harmonics array is kept. IN_MEMORY: a vtkDoubleArray (vtkFloatArray) in the
+   * process's memory, as always. FILE: a file (BasisFileName, or a temporary file) whose payload
+   * the output's harmonics array maps read-only (PROT_READ, MAP_SHARED): its pages are the
+   * system's page cache, not the process's memory, so a basis larger than the memory can be
+   * computed, transformed, filtered and saved; the array must never be written (a write is a
+   * segmentation fault; DeepCopy it first). AUTOMATIC: in memory when the estimate of
+   * Filters/Spectral/Solver/Memory.h fits in MemoryLimit (or the available memory), else a file
+   * when the solve alone fits and the file's disk has room (statvfs), else an error naming what
+   * would make it run; a named BasisFileName always means a file. GetStorageUsed() and
+   * GetStorageReason() say what was chosen and why (a warning too when AUTOMATIC chose a file).
+   * Serial runs of the Built-in solver only: FILE or a BasisFileName in a distributed run or
+   * with the SLEPc solver is an error. The one declaration of these values.
+   */
+  enum StorageType
+  {
+    AUTOMATIC = 0,
+    IN_MEMORY = 1,
+    FILE = 2
+  };
+
+  ///@{
+  /**
+   * Choose where the harmonics are kept: AUTOMATIC (0), IN_MEMORY (1) or FILE (2). Default is
+   * AUTOMATIC.
+   */
+  vtkSetClampMacro(Storage, int, AUTOMATIC, FILE);
+  vtkGetMacro(Storage, int);
+  void SetStorageToAutomatic() { this->SetStorage(AUTOMATIC); }
+  void SetStorageToInMemory() { this->SetStorage(IN_MEMORY); }
+  void SetStorageToFile() { this->SetStorage(FILE); }
+  ///@}
+
+  ///@{
+  /**
+   * The file of a file-backed basis. Empty (the default): a temporary file
+   * ManifoldHarmonics-<pid>-<n>.mhb in $TMPDIR (or /tmp), unlinked as soon as it is mapped: its
+   * name is gone at once, and its disk space is freed when the last array mapping it is
+   * released (the filter recomputes or is destroyed, and no downstream output holds it). Named:
+   * kept, and reused without solving when its header records the same mesh (a digest of the
+   * points and cells) and the same options that change the basis (NumberOfHarmonics, MassMatrix,
+   * Laplacian, BoundaryCondition, BandSize, Tolerance, MinimumComponentSize, NumberOfNeighbors,
+   * FrequencyWindow, WeldSeams, SeamTolerance, BasisPrecision); otherwise it is recomputed and
+   * overwritten, with a warning naming what differed. A file that is not a basis file is never
+   * overwritten (an error). The file is written as `<name>.partial` and renamed when complete,
+   * so an abort or an error leaves no file that would be reused. Format:
+   * Filters/Spectral/Common/BasisFile.h.
+   */
+  vtkSetStdStringFromCharMacro(BasisFileName);
+  vtkGetCharFromStdStringMacro(BasisFileName);
+  ///@}
+
+  ///@{
+  /**
+   * After an execution: where the harmonics were kept (IN_MEMORY or FILE; AUTOMATIC when no
+   * harmonics were computed), why (a sentence), and whether a named BasisFileName was reused
+   * without solving.
+   */
+  vtkGetMacro(StorageUsed, int);
+  const char* GetStorageReason() { return this->StorageReason.c_str(); }
+  vtkGetMacro(BasisReused, bool);
   ///@}
 
   ///@{
@@ -531,6 +598,11 @@ protected:
   std::string SlepcOptions;
   bool WeldSeams;
   double SeamTolerance;
+  int Storage;
+  std::string BasisFileName;
+  int StorageUsed = AUTOMATIC;
+  std::string StorageReason;
+  bool BasisReused = false;
 
 private:
   /// The core's basis of a mesh and the welding of its points before the solve.
@@ -538,12 +610,15 @@ private:
   /**
    * Converts and checks the cells of `input`, welds them when `weld` is true and solves:
    * 0 after an error (reported), 1 otherwise; `solution` holds a basis unless the input has no
-   * cells to solve on (warned).
+   * cells to solve on (warned). `allowFile`: whether the basis may be kept in a file
+   * (Storage; not on process 0 of a distributed run, which scatters it from memory).
    */
-  int Solve(vtkPointSet* input, bool weld, Solution& solution);
+  int Solve(vtkPointSet* input, bool weld, Solution& solution, bool allowFile);
 
   /// The points of the mesh being solved, for the message of InsufficientMemory.
   vtkIdType SolvedPoints = 0;
+  /// Storage AUTOMATIC when nothing fits: why a file would not do, for the same message.
+  std::string FileRefusal;
 
   vtkManifoldHarmonicBasis(const vtkManifoldHarmonicBasis&) = delete;
   void operator=(const vtkManifoldHarmonicBasis&) = delete;

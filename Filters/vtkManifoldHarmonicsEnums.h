@@ -18,6 +18,7 @@
 #include "vtkSpectralDescriptors.h"
 #include "vtkSpectralFilter.h"
 
+#include "Spectral/Common/BasisFile.h"
 #include "Spectral/Common/Mesh.h"
 #include "Spectral/Filtering/Descriptors.h"
 #include "Spectral/Filtering/Transfer.h"
@@ -60,6 +61,13 @@ constexpr Entry<spectral::BoundaryCondition> BoundaryCondition[] = {
 constexpr Entry<int> BasisPrecision[] = {
   { vtkManifoldHarmonicBasis::FLOAT, 4, "Float" },
   { vtkManifoldHarmonicBasis::DOUBLE, 8, "Double" },
+};
+
+/// vtkManifoldHarmonicBasis::Storage.
+constexpr Entry<spectral::BasisStorage> Storage[] = {
+  { vtkManifoldHarmonicBasis::AUTOMATIC, spectral::BasisStorage::Automatic, "Automatic" },
+  { vtkManifoldHarmonicBasis::IN_MEMORY, spectral::BasisStorage::InMemory, "In Memory" },
+  { vtkManifoldHarmonicBasis::FILE, spectral::BasisStorage::File, "File" },
 };
 
 /// vtkManifoldHarmonicBasis::Solver (no core enum: the engine the filter calls).

@@ -50,23 +50,59 @@ struct Fallbacks
 };
 
 //------------------------------------------------------------------------------
-// SmallestEigenpairs with the two fallbacks of the file documentation of Basis.h. Beyond
-// MeaningfulResidual the eigenpairs would be meaningless: the failure is passed on with why.
+// The options of one solve of `request` on one connected component (L has its rows).
+EigenOptions RequestOptions(const Fallbacks& state, const PairRequest& request, Eigen::Index rows)
+{
+  EigenOptions options = state.Options;
+  const int wanted = request.Count;
+  options.NumberOfEigenpairs = (wanted == 1 && request.StartIndex == 0 && rows > 1) ? 2 : wanted;
+  options.StartIndex = request.StartIndex;
+  options.StartValue = request.StartValue;
+  // Every solve is of one connected component: with natural conditions its constant harmonic
+  // is known, and deflated.
+  options.ConstantNullSpace = state.ConstantHarmonics;
+  return options;
+}
+
+//------------------------------------------------------------------------------
+// After the failure `e` of a solve verified to `tolerance`: the relaxed tolerance to solve again
+// with (its warning reported once), or the failure passed on, with why beyond
+// MeaningfulResidual (the eigenpairs would be meaningless).
+double RelaxedTolerance(const SparseMatrix& L,
+  const SparseMatrix& M,
+  double tolerance,
+  const SolverFailure& e,
+  Fallbacks& state)
+{
+  double ratio = 0.0;
+  const double achievable = OperatorsAchievableResidual(L, M, state.Diameter, ratio);
+  const Decision relaxed = Relaxation(tolerance, achievable, ratio);
+  if (relaxed.Outcome == Verdict::Fail && relaxed.Error.empty())
+  {
+    throw e;
+  }
+  if (relaxed.Outcome == Verdict::Fail)
+  {
+    throw SolverFailure(std::string(e.what()) + "; " + relaxed.Error, e.Converged);
+  }
+  if (!state.Relaxed)
+  {
+    Report({ relaxed.Warning }, *state.Warnings, *state.Basis);
+    state.Relaxed = true;
+  }
+  return relaxed.ResidualTolerance;
+}
+
+//------------------------------------------------------------------------------
+// SmallestEigenpairs with the two fallbacks of the file documentation of Basis.h.
 EigenResult SolveWithFallbacks(const SparseMatrix& L,
   const SparseMatrix& M,
   const PairRequest& request,
   const Monitor& monitor,
   Fallbacks& state)
 {
-  EigenOptions options = state.Options;
+  EigenOptions options = RequestOptions(state, request, L.rows());
   const int wanted = request.Count;
-  options.NumberOfEigenpairs =
-    (wanted == 1 && request.StartIndex == 0 && L.rows() > 1) ? 2 : wanted;
-  options.StartIndex = request.StartIndex;
-  options.StartValue = request.StartValue;
-  // Every solve is of one connected component: with natural conditions its constant harmonic
-  // is known, and deflated.
-  options.ConstantNullSpace = state.ConstantHarmonics;
   EigenResult result;
   try
   {
@@ -74,23 +110,7 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
   }
   catch (const SolverFailure& e)
   {
-    double ratio = 0.0;
-    const double achievable = OperatorsAchievableResidual(L, M, state.Diameter, ratio);
-    const Decision relaxed = Relaxation(options.ResidualTolerance, achievable, ratio);
-    if (relaxed.Outcome == Verdict::Fail && relaxed.Error.empty())
-    {
-      throw;
-    }
-    if (relaxed.Outcome == Verdict::Fail)
-    {
-      throw SolverFailure(std::string(e.what()) + "; " + relaxed.Error, e.Converged);
-    }
-    if (!state.Relaxed)
-    {
-      Report({ relaxed.Warning }, *state.Warnings, *state.Basis);
-      state.Relaxed = true;
-    }
-    options.ResidualTolerance = relaxed.ResidualTolerance;
+    options.ResidualTolerance = RelaxedTolerance(L, M, options.ResidualTolerance, e, state);
     result = SmallestEigenpairs(L, M, options, monitor);
   }
   if (result.Eigenvalues.size() > wanted)
@@ -102,6 +122,38 @@ EigenResult SolveWithFallbacks(const SparseMatrix& L,
     }
   }
   return result;
+}
+
+//------------------------------------------------------------------------------
+// Keeps the rows `keep` (ascending) of the result's harmonics (if any), mass and ids, with the
+// warning about the points of the m harmonics' unrepresented components it leaves out.
+void KeepRows(BasisResult& result,
+  const std::vector<Eigen::Index>& keep,
+  const Monitor& monitor,
+  int m)
+{
+  const Eigen::Index left = result.LumpedMass.size() - static_cast<Eigen::Index>(keep.size());
+  if (left == 0)
+  {
+    return;
+  }
+  DenseMatrix& H = result.Pairs.Eigenvectors;
+  if (H.size() > 0)
+  {
+    H = DenseMatrix(H(keep, Eigen::all));
+  }
+  result.LumpedMass = Vector(result.LumpedMass(keep));
+  std::vector<int> ids;
+  for (Eigen::Index i : keep)
+  {
+    ids.push_back(result.InputPointIds[static_cast<std::size_t>(i)]);
+  }
+  result.InputPointIds = std::move(ids);
+  Report({ std::to_string(left) + " points of components that none of the " + std::to_string(m) +
+           " harmonics represents are left out: their harmonics and mass are 0, and the "
+           "filters pass them through unchanged." },
+    monitor,
+    result);
 }
 
 //------------------------------------------------------------------------------
@@ -125,20 +177,7 @@ void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
   {
     return;
   }
-  H = DenseMatrix(H(keep, Eigen::all));
-  result.LumpedMass = Vector(result.LumpedMass(keep));
-  std::vector<int> ids;
-  for (Eigen::Index i : keep)
-  {
-    ids.push_back(result.InputPointIds[static_cast<std::size_t>(i)]);
-  }
-  result.InputPointIds = std::move(ids);
-  Report(
-    { std::to_string(left) + " points of components that none of the " + std::to_string(H.cols()) +
-      " harmonics represents are left out: their harmonics and mass are 0, and the "
-      "filters pass them through unchanged." },
-    monitor,
-    result);
+  KeepRows(result, keep, monitor, static_cast<int>(H.cols()));
 }
 
 //------------------------------------------------------------------------------
@@ -201,6 +240,297 @@ EigenResult SolveProblem(const TriangleMesh& mesh,
 }
 
 //------------------------------------------------------------------------------
+// Thrown inside a streamed pass when a component's solve failed after delivering pairs: the
+// pass starts over (BasisSink::Restart) with the component's relaxed tolerance.
+struct StreamRestart
+{
+};
+
+/// A streamed basis (BasisSink): which pairs of which component go where, and what came.
+class Stream
+{
+public:
+  Stream(const Problem& problem,
+    const BasisOptions& options,
+    const Monitor& monitor,
+    BasisResult& result)
+    : Ops(problem.Operators)
+    , Options(options)
+    , Sink(options.Sink)
+    , Watch(monitor)
+    , Result(result)
+    , ValueScale(problem.Scale * problem.Scale)
+    , VectorScale(std::pow(problem.Scale, 0.5 * problem.Dimension))
+    , Harmonics(problem.Harmonics)
+  {
+    this->State.Options = options.Solver;
+    this->State.Options.KeepEigenvectors = false;
+    this->State.Diameter = this->Ops.Diameter;
+    this->State.ConstantHarmonics = this->Ops.ConstantHarmonics;
+    this->State.Warnings = &monitor;
+    this->State.Basis = &result;
+  }
+
+  /// The whole stream: the plan (a spectrum first where needed), Begin, then the harmonics.
+  void Run(double massScale);
+
+private:
+  void Plan(const Monitor& monitor);
+  void KeepRepresented(double massScale);
+  void SolveComponent(int component,
+    const std::vector<int>& rows,
+    const SparseMatrix& L,
+    const SparseMatrix& M,
+    const PairRequest& request,
+    const Monitor& monitor);
+  void Deliver(int component,
+    const std::vector<int>& rows,
+    int first,
+    const Vector& values,
+    const DenseMatrix& vectors);
+
+  const DiscreteLaplacian& Ops;
+  const BasisOptions& Options;
+  const BasisSink& Sink;
+  const Monitor& Watch;
+  BasisResult& Result;
+  /// Eigenvalues are divided by ValueScale, harmonics by VectorScale (as ComputeBasis does).
+  const double ValueScale;
+  const double VectorScale;
+  const int Harmonics;
+  Fallbacks State;
+  ComponentChoice Choice;
+  /// For each component, the basis index of each of its pairs (-1: not in the basis).
+  std::vector<std::vector<int>> Index;
+  /// For each row of the operators, its row in the delivered harmonics (-1: left out).
+  std::vector<Eigen::Index> Position;
+  Eigen::Index Rows = 0;
+  /// Whether each index was delivered (in this pass), and how many were.
+  std::vector<bool> Delivered;
+  int DeliveredCount = 0;
+  /// Pairs delivered by the current component's solve.
+  int FromComponent = 0;
+};
+
+//------------------------------------------------------------------------------
+// Which component's pairs go where: from a spectrum alone with several components (or when the
+// sink asks for it first), otherwise the one component's m pairs in order.
+void Stream::Plan(const Monitor& monitor)
+{
+  const int count = this->Ops.Components.Count;
+  if (this->Sink.SpectrumFirst || count > 1)
+  {
+    const PairSolver solve = [this](const SparseMatrix& L,
+                               const SparseMatrix& M,
+                               const PairRequest& request,
+                               const Monitor& part)
+    { return SolveWithFallbacks(L, M, request, part, this->State); };
+    EigenResult spectrum = SmallestEigenpairsByComponent(this->Ops.Stiffness,
+      this->Ops.Mass,
+      this->Ops.LumpedMass,
+      this->Ops.Components.Label,
+      count,
+      this->Harmonics,
+      solve,
+      monitor,
+      this->Ops.ConstantHarmonics,
+      &this->Choice);
+    this->Result.Pairs = std::move(spectrum);
+    this->Result.Pairs.Eigenvalues /= this->ValueScale;
+  }
+  else
+  {
+    this->Choice.Asked = { this->Harmonics };
+    this->Choice.Tolerance = { this->State.Options.ResidualTolerance };
+    for (int k = 0; k < this->Harmonics; ++k)
+    {
+      this->Choice.Pairs.emplace_back(0, k);
+    }
+  }
+  this->Index.assign(static_cast<std::size_t>(std::max(count, 1)), std::vector<int>());
+  for (std::size_t j = 0; j < this->Choice.Pairs.size(); ++j)
+  {
+    const auto [component, k] = this->Choice.Pairs[j];
+    std::vector<int>& index = this->Index[static_cast<std::size_t>(component)];
+    if (static_cast<int>(index.size()) <= k)
+    {
+      index.resize(static_cast<std::size_t>(k) + 1, -1);
+    }
+    index[static_cast<std::size_t>(k)] = static_cast<int>(j);
+  }
+}
+
+//------------------------------------------------------------------------------
+// The rows of the components that a pair represents, as LeaveOutUnrepresented keeps them.
+void Stream::KeepRepresented(double massScale)
+{
+  const std::vector<int>& label = this->Ops.Components.Label;
+  const Eigen::Index n = this->Ops.Stiffness.rows();
+  std::vector<Eigen::Index> keep;
+  this->Position.assign(static_cast<std::size_t>(n), -1);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const std::size_t c = this->Ops.Components.Count > 1
+      ? static_cast<std::size_t>(label[static_cast<std::size_t>(i)])
+      : 0;
+    if (!this->Index[c].empty())
+    {
+      this->Position[static_cast<std::size_t>(i)] = static_cast<Eigen::Index>(keep.size());
+      keep.push_back(i);
+    }
+  }
+  this->Rows = static_cast<Eigen::Index>(keep.size());
+  this->Result.LumpedMass = this->Ops.LumpedMass * massScale;
+  this->Result.InputPointIds = this->Ops.InputPointIds;
+  KeepRows(this->Result, keep, this->Watch, static_cast<int>(this->Choice.Pairs.size()));
+}
+
+//------------------------------------------------------------------------------
+// The pairs first, first + 1, ... of a component's solve: in runs of consecutive basis indices,
+// on the delivered rows, in the mesh's units.
+void Stream::Deliver(int component,
+  const std::vector<int>& rows,
+  int first,
+  const Vector& values,
+  const DenseMatrix& vectors)
+{
+  const std::vector<int>& index = this->Index[static_cast<std::size_t>(component)];
+  const int count = static_cast<int>(values.size());
+  for (int k = 0; k < count;)
+  {
+    const int local = first + k;
+    if (local >= static_cast<int>(index.size()) || index[static_cast<std::size_t>(local)] < 0)
+    {
+      ++k;
+      continue;
+    }
+    const int start = index[static_cast<std::size_t>(local)];
+    int run = 1;
+    while (k + run < count && local + run < static_cast<int>(index.size()) &&
+      index[static_cast<std::size_t>(local + run)] == start + run)
+    {
+      ++run;
+    }
+    DenseMatrix harmonics = DenseMatrix::Zero(this->Rows, run);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+    {
+      const Eigen::Index row = this->Position[static_cast<std::size_t>(rows[r])];
+      harmonics.row(row) = vectors.row(static_cast<Eigen::Index>(r)).segment(k, run);
+    }
+    harmonics /= this->VectorScale;
+    const Vector lambda = values.segment(k, run) / this->ValueScale;
+    for (int j = 0; j < run; ++j)
+    {
+      if (this->Delivered[static_cast<std::size_t>(start + j)])
+      {
+        throw SolverFailure(
+          "the streamed basis delivered pair " + std::to_string(start + j) + " twice", 0);
+      }
+      this->Delivered[static_cast<std::size_t>(start + j)] = true;
+      this->Result.Pairs.Eigenvalues[start + j] = lambda[j];
+    }
+    this->DeliveredCount += run;
+    this->FromComponent += run;
+    this->Sink.Harmonics(start, lambda, harmonics);
+    k += run;
+  }
+}
+
+//------------------------------------------------------------------------------
+// One component's solve with the request the plan recorded, streaming its pairs; a failure
+// after some were delivered restarts the pass with the relaxed tolerance.
+void Stream::SolveComponent(int component,
+  const std::vector<int>& rows,
+  const SparseMatrix& L,
+  const SparseMatrix& M,
+  const PairRequest& request,
+  const Monitor& monitor)
+{
+  double& tolerance = this->Choice.Tolerance[static_cast<std::size_t>(component)];
+  EigenOptions options = RequestOptions(this->State, request, L.rows());
+  options.ResidualTolerance = tolerance;
+  options.Deliver = [this, component, &rows](
+                      int first, const Vector& values, const DenseMatrix& vectors)
+  { this->Deliver(component, rows, first, values, vectors); };
+  this->FromComponent = 0;
+  EigenResult solved;
+  try
+  {
+    solved = SmallestEigenpairs(L, M, options, monitor);
+  }
+  catch (const SolverFailure& e)
+  {
+    tolerance = RelaxedTolerance(L, M, tolerance, e, this->State);
+    if (this->FromComponent > 0)
+    {
+      throw StreamRestart();
+    }
+    options.ResidualTolerance = tolerance;
+    solved = SmallestEigenpairs(L, M, options, monitor);
+  }
+  AddStatistics(this->Result.Pairs, solved);
+}
+
+//------------------------------------------------------------------------------
+void Stream::Run(double massScale)
+{
+  const Monitor spectrumPart = this->Watch.Scaled(0.1, 0.55);
+  const bool planned = this->Sink.SpectrumFirst || this->Ops.Components.Count > 1;
+  this->Plan(spectrumPart);
+  this->KeepRepresented(massScale);
+  const int m = static_cast<int>(this->Choice.Pairs.size());
+  if (!planned)
+  {
+    this->Result.Pairs = EigenResult();
+  }
+  if (this->Sink.Begin)
+  {
+    this->Sink.Begin(this->Result);
+  }
+  this->Result.Pairs.Eigenvalues.resize(m);
+  const Monitor streamPart = this->Watch.Scaled(planned ? 0.55 : 0.1, 1.0);
+  const ComponentSolver solve = [this](int component,
+                                  const std::vector<int>& rows,
+                                  const SparseMatrix& L,
+                                  const SparseMatrix& M,
+                                  const PairRequest& request,
+                                  const Monitor& part)
+  { this->SolveComponent(component, rows, L, M, request, part); };
+  while (true)
+  {
+    this->Delivered.assign(static_cast<std::size_t>(m), false);
+    this->DeliveredCount = 0;
+    try
+    {
+      ForEachChosenComponent(this->Ops.Stiffness,
+        this->Ops.Mass,
+        this->Ops.Components.Label,
+        this->Ops.Components.Count,
+        this->Choice,
+        solve,
+        streamPart);
+      break;
+    }
+    catch (const StreamRestart&)
+    {
+      if (!this->Sink.Restart)
+      {
+        throw SolverFailure("a streamed solve failed its residual test after delivering pairs, "
+                            "and the sink cannot start over (BasisSink::Restart)",
+          0);
+      }
+      this->Sink.Restart();
+    }
+  }
+  if (this->DeliveredCount != m)
+  {
+    throw SolverFailure("the streamed basis delivered " + std::to_string(this->DeliveredCount) +
+        " of its " + std::to_string(m) + " pairs",
+      this->DeliveredCount);
+  }
+}
+
+//------------------------------------------------------------------------------
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -233,6 +563,11 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   BasisResult result;
+  const bool streamed = static_cast<bool>(options.Sink.Harmonics);
+  if (streamed && options.UpperFrequency > 0.0)
+  {
+    throw InvalidInput("a frequency window is not streamed: compute its basis in memory");
+  }
   monitor.Begin("Assemble");
   Problem problem = PrepareProblem(mesh, options, monitor, result);
   result.AssemblySeconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -240,6 +575,12 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   monitor.ThrowIfCancelled();
 
   monitor.Begin("Eigensolve");
+  if (streamed)
+  {
+    Stream(problem, options, monitor, result).Run(std::pow(problem.Scale, problem.Dimension));
+    monitor.Report(1.0);
+    return result;
+  }
   result.Pairs = SolveProblem(mesh, problem, options, monitor, result);
   // The mass is an area (a volume) and scales as s^d, d = 2 (3); M-normalized harmonics as
   // s^(-d/2).

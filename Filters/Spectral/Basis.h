@@ -32,11 +32,68 @@
 #include "Solver/Memory.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace spectral
 {
+struct BasisResult;
+
+/**
+ * Where a streamed basis goes (BasisOptions::Sink): ComputeBasis hands each verified harmonic to
+ * the caller as soon as the solver lets it go, instead of returning the n by m basis. Memory is
+ * then the mesh, the operators, the factor and a few bands' vectors (EstimateStreamedMemory,
+ * Solver/Memory.h), whatever m; the eigensolver runs as for a spectrum alone
+ * (EigenOptions::KeepEigenvectors false, EigenOptions::Deliver).
+ *
+ * What the caller receives equals the in-memory basis of the same options: the same eigenvalues,
+ * each harmonic (rows as BasisResult::InputPointIds, in the mesh's units, signs by
+ * NormalizeSigns, the constant harmonic exact) the same column up to the round-off of the
+ * solver's seams. In memory, a band may merge again pairs that the streamed solve has already
+ * let go (Bands.h, Retire): the two differ by round-off, and within a cluster of eigenvalues by
+ * a rotation of its eigenspace (compare subspaces there); Testing/Core/TestStreaming.cxx
+ * measures it.
+ *
+ * Cost. Which pair of a component gets which index of the basis is known only once every
+ * component is solved (the m smallest of the union, Solver/Components.h). With one connected
+ * component and !SpectrumFirst the pairs stream at once, in one solve. Otherwise ComputeBasis
+ * first solves for the spectrum alone (memory independent of m), which fixes each component's
+ * request, each pair's final index and the points left out (components none of the m harmonics
+ * represents), then solves each component again with the same request, streaming: twice the
+ * eigensolve time (the assembly is done once).
+ *
+ * Not streamed: a frequency window (BasisOptions::UpperFrequency > 0; InvalidInput).
+ */
+struct BasisSink
+{
+  /// Whether Begin must receive all m eigenvalues (e.g. gains relative to the highest
+  /// frequency): costs a second solve with one component (see above).
+  bool SpectrumFirst = false;
+  /**
+   * Called once, before any harmonic, with the basis but its harmonics: InputPointIds and
+   * LumpedMass as returned (the rows of every harmonic to come), Components, ConstantHarmonics,
+   * BoundaryPoints and the warnings so far; Pairs.Eigenvalues holds all m eigenvalues (mesh
+   * units) when they are known (SpectrumFirst, or several components), else it is empty. May
+   * be empty.
+   */
+  std::function<void(const BasisResult& basis)> Begin;
+  /**
+   * Receives verified harmonics: `harmonics` (#InputPointIds by values.size()) holds the
+   * harmonics of indices first, first + 1, ... of the basis, `values` their eigenvalues (mesh
+   * units). Each index in [0, m) comes exactly once (unless Restart is called), in no
+   * particular order across components, ascending within one.
+   */
+  std::function<void(int first, const Vector& values, const DenseMatrix& harmonics)> Harmonics;
+  /**
+   * Called when every harmonic delivered so far is void and all will be delivered again: a
+   * component whose solve failed its residual test after some of its pairs were delivered is
+   * solved again with the relaxed tolerance (Acceptance.h; rare: badly conditioned meshes).
+   * Empty: such a failure is thrown (SolverFailure) instead.
+   */
+  std::function<void()> Restart;
+};
+
 /// What ComputeBasis computes and how.
 struct BasisOptions
 {
@@ -73,6 +130,10 @@ struct BasisOptions
   bool CheckMemory = true;
   /// The memory available in bytes; 0 asks the system (AvailableMemory in Solver/Memory.h).
   std::uint64_t MemoryLimit = 0;
+  /// Stream the basis to a sink instead of returning it (BasisSink): when Sink.Harmonics is
+  /// set. The memory check then takes EstimateStreamedMemory, and BasisResult::Pairs holds the
+  /// eigenvalues but no harmonics.
+  BasisSink Sink;
 };
 
 /// A basis: the eigenpairs of a mesh's operators and the map back to its points.
@@ -139,6 +200,7 @@ double UnitScale(double diameter);
  *         Dirichlet condition with no interior point, NumberOfHarmonics below 1, or a frequency
  *         window that is empty or holds no eigenvalue.
  * \throws InsufficientMemory if the estimate exceeds the available memory.
+ * \throws InvalidInput for a streamed basis (options.Sink) with a frequency window.
  * \throws SolverFailure if no verified basis can be had (see SmallestEigenpairs).
  * \throws Cancelled if the monitor says so.
  */

@@ -82,8 +82,8 @@ void CloudProblem(const TriangleMesh& mesh,
   PointCloudOptions cloudOptions;
   cloudOptions.NumberOfNeighbors = options.NumberOfNeighbors;
   cloudOptions.Mass = options.Operators.Mass;
-  problem.Operators =
-    PointCloudLaplacian(Points(mesh.Vertices / problem.Scale), cloudOptions, monitor.Scaled(0.0, 0.1));
+  problem.Operators = PointCloudLaplacian(
+    Points(mesh.Vertices / problem.Scale), cloudOptions, monitor.Scaled(0.0, 0.1));
   Report(problem.Operators.Warnings, monitor, result);
   const Eigen::Index used = problem.Operators.Stiffness.rows();
   if (!problem.Window)
@@ -190,13 +190,17 @@ int ClampHarmonics(int requested, long long usable, const std::string& what, std
 //------------------------------------------------------------------------------
 void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const BasisOptions& options)
 {
-  const MemoryEstimate need = EstimateBasisMemory(static_cast<std::uint64_t>(mesh.Vertices.rows()),
-    static_cast<std::uint64_t>(used),
-    m,
-    options.Solver.BandSize,
-    options.EigenvaluesOnly ? 0 : options.BytesPerValue,
-    !options.EigenvaluesOnly,
-    mesh.IsVolume());
+  const std::uint64_t n = static_cast<std::uint64_t>(mesh.Vertices.rows());
+  const std::uint64_t nUsed = static_cast<std::uint64_t>(used);
+  const MemoryEstimate need = options.Sink.Harmonics
+    ? EstimateStreamedMemory(n, nUsed, m, options.Solver.BandSize, mesh.IsVolume())
+    : EstimateBasisMemory(n,
+        nUsed,
+        m,
+        options.Solver.BandSize,
+        options.EigenvaluesOnly ? 0 : options.BytesPerValue,
+        !options.EigenvaluesOnly,
+        mesh.IsVolume());
   const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
   if (available != 0 && need.Total() > available)
   {

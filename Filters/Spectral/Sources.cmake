@@ -13,6 +13,7 @@
 set(spectral_core_sources
   Basis.cxx
   Problem.cxx
+  Common/BasisFile.cxx
   Common/Seams.cxx
   Operators/Laplacian.cxx
   Operators/Operators.cxx
@@ -43,6 +44,7 @@ set(spectral_core_headers
   Common/Eigenvalues.h
   Operators/Laplacian.h
   Common/Mesh.h
+  Common/BasisFile.h
   Common/Seams.h
   Common/Monitor.h
   Common/Threads.h

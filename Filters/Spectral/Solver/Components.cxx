@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <tuple>
 
 namespace spectral
@@ -78,22 +79,6 @@ int FirstRequest(const Block& block, double totalArea, int m)
 }
 
 //------------------------------------------------------------------------------
-// The statistics of `part` added to those of `total`.
-void AddStatistics(EigenResult& total, const EigenResult& part)
-{
-  total.MaxResidual = std::max(total.MaxResidual, part.MaxResidual);
-  total.MaxBackwardError = std::max(total.MaxBackwardError, part.MaxBackwardError);
-  total.Bands += part.Bands;
-  total.Factorizations += part.Factorizations;
-  total.OperatorApplications += part.OperatorApplications;
-  total.Seconds.Factorization += part.Seconds.Factorization;
-  total.Seconds.Solve += part.Seconds.Solve;
-  total.Seconds.Orthogonalization += part.Seconds.Orthogonalization;
-  total.Seconds.RayleighRitz += part.Seconds.RayleighRitz;
-  total.Seconds.Verification += part.Seconds.Verification;
-}
-
-//------------------------------------------------------------------------------
 // The union of the chosen pairs (component, index within its pairs), in the given order: the
 // eigenvalues, and the eigenvectors extended by zero if the components have them.
 void Gather(const std::vector<Block>& blocks,
@@ -161,6 +146,21 @@ bool MayHideEigenvalues(const Block& block, double threshold)
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
+void AddStatistics(EigenResult& total, const EigenResult& part)
+{
+  total.MaxResidual = std::max(total.MaxResidual, part.MaxResidual);
+  total.MaxBackwardError = std::max(total.MaxBackwardError, part.MaxBackwardError);
+  total.Bands += part.Bands;
+  total.Factorizations += part.Factorizations;
+  total.OperatorApplications += part.OperatorApplications;
+  total.Seconds.Factorization += part.Seconds.Factorization;
+  total.Seconds.Solve += part.Seconds.Solve;
+  total.Seconds.Orthogonalization += part.Seconds.Orthogonalization;
+  total.Seconds.RayleighRitz += part.Seconds.RayleighRitz;
+  total.Seconds.Verification += part.Seconds.Verification;
+}
+
+//------------------------------------------------------------------------------
 EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const SparseMatrix& M,
   const Vector& weight,
@@ -169,11 +169,23 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   int m,
   const PairSolver& solve,
   const Monitor& monitor,
-  bool constantHarmonics)
+  bool constantHarmonics,
+  ComponentChoice* choice)
 {
   if (count <= 1)
   {
-    return solve(L, M, PairRequest{ m }, monitor);
+    EigenResult result = solve(L, M, PairRequest{ m }, monitor);
+    if (choice)
+    {
+      choice->Asked = { m };
+      choice->Tolerance = { result.ResidualTolerance };
+      choice->Pairs.clear();
+      for (int k = 0; k < static_cast<int>(result.Eigenvalues.size()); ++k)
+      {
+        choice->Pairs.emplace_back(0, k);
+      }
+    }
+    return result;
   }
   std::vector<Block> blocks = SplitBlocks(L, M, label, count);
   for (std::size_t i = 0; i < label.size(); ++i)
@@ -233,8 +245,66 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
     chosen.emplace_back(std::get<2>(member), std::get<3>(member));
   }
   Gather(blocks, chosen, L.rows(), result);
+  if (choice)
+  {
+    choice->Asked.clear();
+    choice->Tolerance.clear();
+    for (const Block& block : blocks)
+    {
+      choice->Asked.push_back(block.Asked);
+      choice->Tolerance.push_back(block.Pairs.ResidualTolerance);
+    }
+    choice->Pairs = std::move(chosen);
+  }
   monitor.Report(1.0);
   return result;
+}
+
+//------------------------------------------------------------------------------
+void ForEachChosenComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const std::vector<int>& label,
+  int count,
+  const ComponentChoice& choice,
+  const ComponentSolver& solve,
+  const Monitor& monitor)
+{
+  std::vector<bool> chosen(static_cast<std::size_t>(std::max(count, 1)), false);
+  for (const auto& pair : choice.Pairs)
+  {
+    chosen[static_cast<std::size_t>(pair.first)] = true;
+  }
+  if (count <= 1)
+  {
+    std::vector<int> rows(static_cast<std::size_t>(L.rows()));
+    std::iota(rows.begin(), rows.end(), 0);
+    if (chosen[0])
+    {
+      solve(0, rows, L, M, PairRequest{ choice.Asked[0] }, monitor);
+    }
+    monitor.Report(1.0);
+    return;
+  }
+  const std::vector<Block> blocks = SplitBlocks(L, M, label, count);
+  const double n = static_cast<double>(L.rows());
+  double done = 0.0;
+  for (std::size_t c = 0; c < blocks.size(); ++c)
+  {
+    const Block& block = blocks[c];
+    const double share = static_cast<double>(block.Rows.size()) / n;
+    monitor.ThrowIfCancelled();
+    if (chosen[c])
+    {
+      solve(static_cast<int>(c),
+        block.Rows,
+        block.L,
+        block.M,
+        PairRequest{ choice.Asked[c] },
+        monitor.Scaled(done, done + share));
+    }
+    done += share;
+  }
+  monitor.Report(1.0);
 }
 
 //------------------------------------------------------------------------------

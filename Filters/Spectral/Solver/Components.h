@@ -30,6 +30,7 @@
 #include "Solver/EigenSolver.h"
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace spectral
@@ -49,6 +50,19 @@ using PairSolver = std::function<EigenResult(const SparseMatrix& L,
   const PairRequest& request,
   const Monitor& monitor)>;
 
+/// How SmallestEigenpairsByComponent chose its pairs.
+struct ComponentChoice
+{
+  /// For each component, the pairs its last solve was asked for (PairRequest::Count).
+  std::vector<int> Asked;
+  /// For each component, the residual tolerance its last solve verified to
+  /// (EigenResult::ResidualTolerance).
+  std::vector<double> Tolerance;
+  /// For each returned pair, in the order returned: its component and its index among that
+  /// component's pairs (the pairs of a component are a prefix of its spectrum).
+  std::vector<std::pair<int, int>> Pairs;
+};
+
 /**
  * The m smallest eigenpairs of block-diagonal operators, component by component.
  * \param L, M The operators (n by n) of a mesh whose points are labelled by component.
@@ -64,6 +78,7 @@ using PairSolver = std::function<EigenResult(const SparseMatrix& L,
  * the number of components the basis describes the largest ones. \param constantHarmonics Whether
  * the first pair of each component is its constant harmonic of eigenvalue 0 (Neumann conditions);
  * false for Dirichlet conditions, where every pair is ordered by its eigenvalue alone.
+ * \param choice If given, set to how the pairs were chosen (what ForEachChosenComponent repeats).
  */
 EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -73,7 +88,35 @@ EigenResult SmallestEigenpairsByComponent(const SparseMatrix& L,
   int m,
   const PairSolver& solve,
   const Monitor& monitor = Monitor(),
-  bool constantHarmonics = true);
+  bool constantHarmonics = true,
+  ComponentChoice* choice = nullptr);
+
+/// The statistics of `part` added to those of `total` (MaxResidual and MaxBackwardError: the
+/// largest).
+void AddStatistics(EigenResult& total, const EigenResult& part);
+
+/// Solves one component (`component`, whose points are `rows` of the whole operators).
+using ComponentSolver = std::function<void(int component,
+  const std::vector<int>& rows,
+  const SparseMatrix& L,
+  const SparseMatrix& M,
+  const PairRequest& request,
+  const Monitor& monitor)>;
+
+/**
+ * The solves of SmallestEigenpairsByComponent again, as `choice` records them: each component
+ * that has a chosen pair, in component order, with the request of its last solve (the same
+ * operators and request: the same pairs), for a caller that streams them (Basis.h, BasisSink).
+ * \param L, M, label, count As SmallestEigenpairsByComponent (count <= 1: the whole operators).
+ * \param monitor Progress over the components, and cancellation.
+ */
+void ForEachChosenComponent(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const std::vector<int>& label,
+  int count,
+  const ComponentChoice& choice,
+  const ComponentSolver& solve,
+  const Monitor& monitor = Monitor());
 
 /// Told the eigenvalues below a frequency window and in it, once they are counted.
 using WindowCounted = std::function<void(int below, int inWindow)>;

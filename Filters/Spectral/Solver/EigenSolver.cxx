@@ -16,8 +16,8 @@
 // (Acceptance.h, NormalizeSigns).
 #include "Solver/EigenSolver.h"
 #include "Common/Threads.h"
-#include "Solver/Bands.h"
 #include "Solver/Acceptance.h"
+#include "Solver/Bands.h"
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 #include "Solver/MassMatrix.h"
@@ -30,6 +30,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 namespace spectral
 {
@@ -371,6 +372,36 @@ EigenResult SolveDensely(const SparseMatrix& L,
   return result;
 }
 
+/**
+ * EigenOptions::Deliver of the pairs (values, harmonics) whose first is pair `first`: those of
+ * index < m, with the constant null pair exact and the signs of the returned result.
+ */
+void Deliver(const SparseMatrix& M,
+  const EigenOptions& options,
+  const Vector& values,
+  DenseMatrix harmonics,
+  int first)
+{
+  const int count =
+    std::min<int>(static_cast<int>(values.size()), options.NumberOfEigenpairs - first);
+  if (!options.Deliver || count <= 0)
+  {
+    return;
+  }
+  Vector lambda = values.head(count);
+  if (harmonics.cols() > count)
+  {
+    harmonics.conservativeResize(Eigen::NoChange, count);
+  }
+  if (first == 0 && options.ConstantNullSpace && options.StartIndex == 0)
+  {
+    lambda[0] = 0.0;
+    harmonics.col(0) = ConstantNullVector(M);
+  }
+  NormalizeSigns(harmonics);
+  options.Deliver(first, lambda, harmonics);
+}
+
 /// The band-by-band iteration (Bands.h), on the standard problem when M is a lumped mass.
 EigenResult SolveByBands(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -391,7 +422,10 @@ EigenResult SolveByBands(const SparseMatrix& L,
   {
     const detail::RetirePairs retire =
       [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
-    { detail::CheckSomeResiduals(L, M, options, values, vectors, first, result); };
+    {
+      detail::CheckSomeResiduals(L, M, options, values, vectors, first, result);
+      Deliver(M, options, values, vectors, first);
+    };
     return detail::BandEigenpairs(
       L, detail::MassMatrix{ M, false, deflation }, area, options, monitor, retire);
   }
@@ -416,6 +450,7 @@ EigenResult SolveByBands(const SparseMatrix& L,
     DenseMatrix harmonics = vectors;
     ScaleRows(harmonics, scaling);
     detail::CheckSomeResiduals(L, M, options, values, harmonics, first, result);
+    Deliver(M, options, values, std::move(harmonics), first);
   };
   EigenResult result = detail::BandEigenpairs(
     S, detail::MassMatrix{ identity, true, deflation }, area, options, monitor, retire);
@@ -469,9 +504,14 @@ EigenResult SmallestEigenpairs(const SparseMatrix& L,
   }
   if (!options.KeepEigenvectors)
   {
+    if (dense)
+    {
+      Deliver(M, options, result.Eigenvalues, std::move(result.Eigenvectors), 0);
+    }
     // The band path verified its pairs as it let them go.
     result.Eigenvectors.resize(0, 0);
   }
+  result.ResidualTolerance = options.ResidualTolerance;
   monitor.Report(1.0);
   return result;
 }

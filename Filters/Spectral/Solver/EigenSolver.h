@@ -27,6 +27,8 @@
 #include "Common/Mesh.h"
 #include "Common/Monitor.h"
 
+#include <functional>
+
 namespace spectral
 {
 /// The Lanczos iteration run within each band.
@@ -85,6 +87,18 @@ struct EigenOptions
    */
   bool KeepEigenvectors = true;
   /**
+   * Without KeepEigenvectors: receives the pairs the solve lets go, as soon as they are verified,
+   * each pair of index < NumberOfEigenpairs exactly once, in ascending blocks: `first` is the
+   * index of the block's first pair among the returned ones (0 is the first pair at or above
+   * StartValue), `values` its eigenvalues as the result returns them, `vectors` (n by the block
+   * size) its eigenvectors as the result would have held them with KeepEigenvectors: of the
+   * caller's pencil, M-orthonormal, signs by NormalizeSigns (Acceptance.h), the constant null
+   * pair exact (ConstantNullSpace). The band path delivers a block at each retirement (Bands.h),
+   * the dense path all at once after its final check. A solve that throws may have delivered
+   * some blocks first (verified ones). Empty: the vectors are dropped.
+   */
+  std::function<void(int first, const Vector& values, const DenseMatrix& vectors)> Deliver;
+  /**
    * Pairs that start above the bottom of the spectrum: when StartIndex > 0, the solve returns
    * the NumberOfEigenpairs smallest eigenvalues at or above StartValue, and StartIndex must be
    * the number of eigenvalues below StartValue (the caller's inertia count of L - StartValue M,
@@ -139,6 +153,9 @@ struct EigenResult
   /// (L - sigma M)^-1 M, and the refinement of bands whose residuals failed.
   long long OperatorApplications = 0;
   EigenTimings Seconds;
+  /// The relative residual tolerance the pairs were verified to (EigenOptions::
+  /// ResidualTolerance; a caller that relaxed it solved with the relaxed one).
+  double ResidualTolerance = 0.0;
 };
 
 /**

@@ -56,6 +56,20 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
 }
 
 //------------------------------------------------------------------------------
+MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  bool volume)
+{
+  MemoryEstimate estimate = EstimateBasisMemory(n, nUsed, m, bandSize, 0, false, volume);
+  const std::uint64_t block = std::min(static_cast<std::uint64_t>(std::max(m, 0)),
+    3 * static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize)));
+  estimate.Basis = 2 * n * block * 8;
+  return estimate;
+}
+
+//------------------------------------------------------------------------------
 std::uint64_t AvailableMemory()
 {
   const std::uint64_t fromProc = MemAvailableFromProc();

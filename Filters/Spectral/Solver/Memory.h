@@ -32,7 +32,14 @@
  * 1.22e9 bytes; the benchmark (`--case 100000:500`, no VTK output) measured a peak resident
  * size of 905 MiB (0.95e9 bytes).
  *
- * Used by vtkManifoldHarmonicBasis; tested by Testing/Core/TestMemory.cxx.
+ * A streamed basis (BasisSink, Basis.h) keeps no output basis and runs the solver as for a
+ * spectrum alone; its Basis term is instead the blocks in delivery, 2 n min(m, 3 k) 8 (a
+ * retired block of at most three bands in the solver's rows and again on the output's rows):
+ * EstimateStreamedMemory, independent of m once m > 3 k. A caller that accumulates what it
+ * receives adds its own arrays (vtkManifoldHarmonicSmoothing: the signals' sums).
+ *
+ * Used by vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing; tested by
+ * Testing/Core/TestMemory.cxx.
  */
 #ifndef spectral_Memory_h
 #define spectral_Memory_h
@@ -80,6 +87,17 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   int bandSize,
   int bytesPerValue,
   bool keepEigenvectors = true,
+  bool volume = false);
+
+/**
+ * Estimate the memory of streaming an n by m basis (BasisSink; see the file documentation):
+ * EstimateBasisMemory of a spectrum alone, with the blocks in delivery as its Basis term.
+ * \param n, nUsed, m, bandSize, volume As EstimateBasisMemory.
+ */
+MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
   bool volume = false);
 
 /**

@@ -9,6 +9,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -180,6 +181,22 @@ inline vtkSmartPointer<vtkPolyData> UnitSphere(int thetaResolution, int phiResol
   sphere->Update();
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(sphere->GetOutput());
+  return mesh;
+}
+
+/// UnitSphere with the point scalar "Height" = z + 0.3 x y (a signal to transform and filter).
+inline vtkSmartPointer<vtkPolyData> SphereWithHeight(int thetaResolution, int phiResolution)
+{
+  vtkSmartPointer<vtkPolyData> mesh = UnitSphere(thetaResolution, phiResolution);
+  vtkNew<vtkDoubleArray> height;
+  height->SetName("Height");
+  height->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const double* p = mesh->GetPoint(i);
+    height->SetValue(i, p[2] + 0.3 * p[0] * p[1]);
+  }
+  mesh->GetPointData()->AddArray(height);
   return mesh;
 }
 

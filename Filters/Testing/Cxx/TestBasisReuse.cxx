@@ -40,17 +40,7 @@ using ManifoldHarmonicsTest::RelativeDifference;
 // A unit sphere (double points) with a scalar "Height".
 vtkSmartPointer<vtkPolyData> MakeSphere()
 {
-  vtkSmartPointer<vtkPolyData> mesh = ManifoldHarmonicsTest::UnitSphere(24, 16);
-  vtkNew<vtkDoubleArray> height;
-  height->SetName("Height");
-  height->SetNumberOfTuples(mesh->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-  {
-    const double* p = mesh->GetPoint(i);
-    height->SetValue(i, p[2] + 0.3 * p[0] * p[1]);
-  }
-  mesh->GetPointData()->AddArray(height);
-  return mesh;
+  return ManifoldHarmonicsTest::SphereWithHeight(24, 16);
 }
 
 //------------------------------------------------------------------------------

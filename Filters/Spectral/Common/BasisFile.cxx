@@ -1,0 +1,691 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Common/BasisFile.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <iomanip>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+namespace spectral
+{
+namespace
+{
+constexpr char Magic[8] = { 'M', 'H', 'B', 'A', 'S', 'I', 'S', '\0' };
+constexpr std::uint32_t ByteOrderMark = 0x01020304u;
+/// The fixed part: magic, version, byte order, n, m, b, reserved, digest, payload offset,
+/// header bytes, header checksum.
+constexpr std::uint64_t FixedBytes = 80;
+/// Bytes kept in the header for the warnings of the solve (Commit drops those beyond).
+constexpr std::uint64_t WarningRoom = 65536;
+
+//------------------------------------------------------------------------------
+std::string SystemError(const std::string& what, const std::string& path)
+{
+  return what + " '" + path + "': " + std::strerror(errno);
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t PageSize()
+{
+  const long size = sysconf(_SC_PAGESIZE);
+  return size > 0 ? static_cast<std::uint64_t>(size) : 4096;
+}
+
+//------------------------------------------------------------------------------
+// The variable part of the header as bytes.
+struct Buffer
+{
+  std::string Bytes;
+  template<typename T>
+  void Put(const T& value)
+  {
+    this->Bytes.append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  void PutString(const std::string& text)
+  {
+    this->Put<std::uint64_t>(text.size());
+    this->Bytes.append(text);
+  }
+  void PutDoubles(const std::vector<double>& values)
+  {
+    this->Bytes.append(
+      reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+  }
+};
+
+//------------------------------------------------------------------------------
+// Reads the variable part back; every read is bounds-checked (a damaged header is Unusable).
+struct Reader
+{
+  const std::string& Bytes;
+  const std::string& Path;
+  std::size_t At = 0;
+  void Need(std::uint64_t size)
+  {
+    if (size > this->Bytes.size() - this->At)
+    {
+      throw BasisFileError(BasisFileError::Kind::Unusable,
+        "the basis file '" + this->Path + "' has a damaged header (a field runs past its end)");
+    }
+  }
+  template<typename T>
+  T Get()
+  {
+    this->Need(sizeof(T));
+    T value;
+    std::memcpy(&value, this->Bytes.data() + this->At, sizeof(T));
+    this->At += sizeof(T);
+    return value;
+  }
+  std::string GetString()
+  {
+    const std::uint64_t size = this->Get<std::uint64_t>();
+    this->Need(size);
+    std::string text = this->Bytes.substr(this->At, size);
+    this->At += size;
+    return text;
+  }
+  std::vector<double> GetDoubles(std::uint64_t count)
+  {
+    if (count > (this->Bytes.size() - this->At) / sizeof(double))
+    {
+      this->Need(this->Bytes.size() + 1);
+    }
+    std::vector<double> values(count);
+    std::memcpy(values.data(), this->Bytes.data() + this->At, count * sizeof(double));
+    this->At += count * sizeof(double);
+    return values;
+  }
+};
+
+//------------------------------------------------------------------------------
+std::string VariableHeader(const BasisFileHeader& header)
+{
+  Buffer buffer;
+  buffer.PutString(header.Options);
+  buffer.PutDoubles(header.Eigenvalues);
+  buffer.PutDoubles(header.Mass);
+  buffer.Put(header.BackwardError);
+  buffer.Put(header.Residual);
+  buffer.Put<std::uint64_t>(header.Warnings.size());
+  for (const std::string& warning : header.Warnings)
+  {
+    buffer.PutString(warning);
+  }
+  return buffer.Bytes;
+}
+
+//------------------------------------------------------------------------------
+std::string FixedHeader(const BasisFileHeader& header, const std::string& variable)
+{
+  Buffer buffer;
+  buffer.Bytes.append(Magic, sizeof(Magic));
+  buffer.Put(BasisFileVersion);
+  buffer.Put(ByteOrderMark);
+  buffer.Put(header.Rows);
+  buffer.Put(header.Columns);
+  buffer.Put(header.BytesPerValue);
+  buffer.Put<std::uint32_t>(0);
+  buffer.Put(header.MeshDigest);
+  buffer.Put(header.PayloadOffset);
+  buffer.Put<std::uint64_t>(variable.size());
+  buffer.Put(Fnv1a(variable.data(), variable.size()));
+  return buffer.Bytes;
+}
+
+//------------------------------------------------------------------------------
+void WriteAll(int descriptor,
+  const std::string& bytes,
+  std::uint64_t offset,
+  const std::string& path)
+{
+  std::size_t done = 0;
+  while (done < bytes.size())
+  {
+    const ssize_t wrote = pwrite(
+      descriptor, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    if (wrote < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (wrote <= 0)
+    {
+      throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot write", path));
+    }
+    done += static_cast<std::size_t>(wrote);
+  }
+}
+
+//------------------------------------------------------------------------------
+// Reads exactly `size` bytes at `offset`; false at the end of the file.
+bool ReadAll(int descriptor, char* bytes, std::uint64_t size, std::uint64_t offset)
+{
+  std::uint64_t done = 0;
+  while (done < size)
+  {
+    const ssize_t got =
+      pread(descriptor, bytes + done, size - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (got <= 0)
+    {
+      return false;
+    }
+    done += static_cast<std::uint64_t>(got);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// The registry of the mappings of MapBasisPayload: the free function of a VTK array gets only
+// the pointer.
+std::mutex& RegistryMutex()
+{
+  static std::mutex mutex;
+  return mutex;
+}
+std::map<void*, std::uint64_t>& Registry()
+{
+  static std::map<void*, std::uint64_t> mappings;
+  return mappings;
+}
+
+//------------------------------------------------------------------------------
+// The lines of an options text by name.
+std::map<std::string, std::string> OptionLines(const std::string& text)
+{
+  std::map<std::string, std::string> lines;
+  std::istringstream stream(text);
+  std::string line;
+  while (std::getline(stream, line))
+  {
+    const std::size_t equal = line.find('=');
+    lines[line.substr(0, equal)] = equal == std::string::npos ? "" : line.substr(equal + 1);
+  }
+  return lines;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+std::uint64_t Fnv1a(const void* bytes, std::size_t size, std::uint64_t hash)
+{
+  const unsigned char* data = static_cast<const unsigned char*>(bytes);
+  for (std::size_t i = 0; i < size; ++i)
+  {
+    hash ^= data[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t MeshDigest(const double* points,
+  std::size_t numPoints,
+  const int* triangles,
+  std::size_t numTriangles,
+  const int* tets,
+  std::size_t numTets)
+{
+  const std::uint64_t counts[3] = { numPoints, numTriangles, numTets };
+  std::uint64_t hash = Fnv1a(counts, sizeof(counts));
+  hash = Fnv1a(points, numPoints * 3 * sizeof(double), hash);
+  hash = Fnv1a(triangles, numTriangles * 3 * sizeof(int), hash);
+  return Fnv1a(tets, numTets * 4 * sizeof(int), hash);
+}
+
+//------------------------------------------------------------------------------
+std::string DescribeOptionChanges(const std::string& before, const std::string& now)
+{
+  const std::map<std::string, std::string> a = OptionLines(before);
+  const std::map<std::string, std::string> b = OptionLines(now);
+  std::string changes;
+  const auto add = [&changes](
+                     const std::string& name, const std::string& from, const std::string& to)
+  { changes += (changes.empty() ? "" : ", ") + name + " " + from + " -> " + to; };
+  for (const auto& line : b)
+  {
+    const auto old = a.find(line.first);
+    if (old == a.end() || old->second != line.second)
+    {
+      add(line.first, old == a.end() ? "(none)" : old->second, line.second);
+    }
+  }
+  for (const auto& line : a)
+  {
+    if (b.find(line.first) == b.end())
+    {
+      add(line.first, line.second, "(none)");
+    }
+  }
+  return changes;
+}
+
+//------------------------------------------------------------------------------
+BasisFileHeader ReadBasisFileHeader(const std::string& path)
+{
+  const int descriptor = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot open the basis file", path));
+  }
+  struct Closer
+  {
+    int Descriptor;
+    ~Closer() { close(this->Descriptor); }
+  } closer{ descriptor };
+  struct stat status;
+  if (fstat(descriptor, &status) != 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot stat", path));
+  }
+  const std::uint64_t fileSize = static_cast<std::uint64_t>(status.st_size);
+  const auto unusable = [&path](const std::string& why) {
+    return BasisFileError(BasisFileError::Kind::Unusable, "the basis file '" + path + "' " + why);
+  };
+  std::string fixed(FixedBytes, '\0');
+  if (!ReadAll(descriptor, &fixed[0], FixedBytes, 0))
+  {
+    if (fileSize >= sizeof(Magic) && std::memcmp(fixed.data(), Magic, sizeof(Magic)) == 0)
+    {
+      throw unusable(
+        "is truncated (" + std::to_string(fileSize) + " bytes, shorter than its header)");
+    }
+    throw BasisFileError(BasisFileError::Kind::Foreign,
+      "'" + path + "' is not a manifold harmonics basis file (" + std::to_string(fileSize) +
+        " bytes, too short)");
+  }
+  if (std::memcmp(fixed.data(), Magic, sizeof(Magic)) != 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Foreign,
+      "'" + path + "' is not a manifold harmonics basis file (no MHBASIS signature)");
+  }
+  Reader fields{ fixed, path, sizeof(Magic) };
+  const std::uint32_t version = fields.Get<std::uint32_t>();
+  const std::uint32_t order = fields.Get<std::uint32_t>();
+  if (version != BasisFileVersion)
+  {
+    throw unusable("has format version " + std::to_string(version) + "; this build reads version " +
+      std::to_string(BasisFileVersion));
+  }
+  if (order != ByteOrderMark)
+  {
+    throw unusable("was written on a machine of the other byte order");
+  }
+  BasisFileHeader header;
+  header.Rows = fields.Get<std::uint64_t>();
+  header.Columns = fields.Get<std::uint64_t>();
+  header.BytesPerValue = fields.Get<std::uint32_t>();
+  fields.Get<std::uint32_t>();
+  header.MeshDigest = fields.Get<std::uint64_t>();
+  header.PayloadOffset = fields.Get<std::uint64_t>();
+  const std::uint64_t variableBytes = fields.Get<std::uint64_t>();
+  const std::uint64_t checksum = fields.Get<std::uint64_t>();
+  if (header.BytesPerValue != 4 && header.BytesPerValue != 8)
+  {
+    throw unusable("has " + std::to_string(header.BytesPerValue) + " bytes a value (4 or 8)");
+  }
+  // n m b must not overflow, and the header must lie before the payload.
+  const std::uint64_t limit = ~std::uint64_t(0) / 16;
+  if (header.Rows > limit || header.Columns > limit ||
+    (header.Columns > 0 && header.Rows > limit / header.Columns) || variableBytes > fileSize ||
+    header.PayloadOffset < FixedBytes + variableBytes || header.PayloadOffset % PageSize() != 0)
+  {
+    throw unusable("has sizes that disagree (n " + std::to_string(header.Rows) + ", m " +
+      std::to_string(header.Columns) + ", header " + std::to_string(variableBytes) +
+      " bytes, payload at " + std::to_string(header.PayloadOffset) + ")");
+  }
+  const std::uint64_t expected = header.PayloadOffset + header.PayloadBytes();
+  if (fileSize != expected)
+  {
+    throw unusable(
+      std::string(fileSize < expected ? "is truncated" : "is longer than its header says") + ": " +
+      std::to_string(fileSize) + " bytes, " + std::to_string(expected) + " expected for n " +
+      std::to_string(header.Rows) + ", m " + std::to_string(header.Columns) + " and " +
+      std::to_string(header.BytesPerValue) + "-byte values");
+  }
+  std::string variable(variableBytes, '\0');
+  if (!ReadAll(descriptor, &variable[0], variableBytes, FixedBytes))
+  {
+    throw unusable("is truncated in its header");
+  }
+  if (Fnv1a(variable.data(), variable.size()) != checksum)
+  {
+    throw unusable("has a damaged header (its checksum does not match)");
+  }
+  Reader reader{ variable, path };
+  header.Options = reader.GetString();
+  header.Eigenvalues = reader.GetDoubles(header.Columns);
+  header.Mass = reader.GetDoubles(header.Rows);
+  header.BackwardError = reader.Get<double>();
+  header.Residual = reader.Get<double>();
+  const std::uint64_t warnings = reader.Get<std::uint64_t>();
+  for (std::uint64_t w = 0; w < warnings; ++w)
+  {
+    header.Warnings.push_back(reader.GetString());
+  }
+  return header;
+}
+
+//------------------------------------------------------------------------------
+BasisFileWriter::BasisFileWriter(const std::string& path, const BasisFileHeader& header)
+  : Path(path)
+  , Partial(path + ".partial")
+  , Header(header)
+{
+  const std::uint64_t page = PageSize();
+  // Room for the header of Commit: m eigenvalues, n masses, and warnings known only at the end.
+  BasisFileHeader sized = header;
+  sized.Eigenvalues.resize(header.Columns);
+  sized.Mass.resize(header.Rows);
+  const std::uint64_t used = FixedBytes + VariableHeader(sized).size() + WarningRoom;
+  this->Header.PayloadOffset = (used + page - 1) / page * page;
+  unlink(this->Partial.c_str());
+  this->Descriptor = open(this->Partial.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (this->Descriptor < 0)
+  {
+    throw BasisFileError(
+      BasisFileError::Kind::Io, SystemError("cannot create the basis file", this->Partial));
+  }
+  this->MappedBytes = this->Header.PayloadBytes();
+  // Blocks allocated now: a disk that fills up is an error here, not a SIGBUS when a band is
+  // written through the mapping.
+  const int allocated = posix_fallocate(
+    this->Descriptor, 0, static_cast<off_t>(this->Header.PayloadOffset + this->MappedBytes));
+  if (allocated != 0)
+  {
+    errno = allocated;
+    const std::string message = SystemError("cannot allocate the basis file", this->Partial);
+    this->Discard();
+    throw BasisFileError(BasisFileError::Kind::Io, message);
+  }
+  if (this->MappedBytes > 0)
+  {
+    void* mapped = mmap(nullptr,
+      this->MappedBytes,
+      PROT_READ | PROT_WRITE,
+      MAP_SHARED,
+      this->Descriptor,
+      static_cast<off_t>(this->Header.PayloadOffset));
+    if (mapped == MAP_FAILED)
+    {
+      const std::string message = SystemError("cannot map the basis file", this->Partial);
+      this->Discard();
+      throw BasisFileError(BasisFileError::Kind::Io, message);
+    }
+    this->Payload = static_cast<unsigned char*>(mapped);
+  }
+}
+
+//------------------------------------------------------------------------------
+BasisFileWriter::~BasisFileWriter()
+{
+  if (!this->Committed)
+  {
+    this->Discard();
+  }
+}
+
+//------------------------------------------------------------------------------
+void BasisFileWriter::Discard()
+{
+  if (this->Payload)
+  {
+    munmap(this->Payload, this->MappedBytes);
+    this->Payload = nullptr;
+  }
+  if (this->Descriptor >= 0)
+  {
+    close(this->Descriptor);
+    this->Descriptor = -1;
+  }
+  unlink(this->Partial.c_str());
+}
+
+//------------------------------------------------------------------------------
+void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
+  std::uint64_t count,
+  const double* values,
+  std::uint64_t rows,
+  const std::vector<int>& sources,
+  const std::vector<std::int64_t>& targets)
+{
+  const std::uint64_t m = this->Header.Columns;
+  if (firstColumn + count > m)
+  {
+    throw std::out_of_range("BasisFileWriter::WriteColumns: columns beyond m");
+  }
+  // Blocks of rows: each column of the band is read in order over a block, and the block's
+  // rows of the file (m values each) stay in the cache and the TLB. A row at a time would read
+  // the band across its columns, n values apart: a cache and TLB miss per value (10 times
+  // slower on 200K x 500).
+  const std::size_t block = 256;
+  for (std::size_t begin = 0; begin < targets.size(); begin += block)
+  {
+    const std::size_t end = std::min(targets.size(), begin + block);
+    for (std::uint64_t k = 0; k < count; ++k)
+    {
+      const double* column = values + k * rows;
+      if (this->Header.BytesPerValue == 4)
+      {
+        float* out = reinterpret_cast<float*>(this->Payload) + firstColumn + k;
+        for (std::size_t e = begin; e < end; ++e)
+        {
+          out[static_cast<std::uint64_t>(targets[e]) * m] = static_cast<float>(column[sources[e]]);
+        }
+      }
+      else
+      {
+        double* out = reinterpret_cast<double*>(this->Payload) + firstColumn + k;
+        for (std::size_t e = begin; e < end; ++e)
+        {
+          out[static_cast<std::uint64_t>(targets[e]) * m] = column[sources[e]];
+        }
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void BasisFileWriter::Commit(const BasisFileHeader& header)
+{
+  BasisFileHeader final = header;
+  std::uint64_t warningBytes = 0;
+  std::size_t kept = 0;
+  while (
+    kept < final.Warnings.size() && warningBytes + final.Warnings[kept].size() + 8 < WarningRoom)
+  {
+    warningBytes += final.Warnings[kept++].size() + 8;
+  }
+  final.Warnings.resize(kept);
+  final.Eigenvalues.resize(this->Header.Columns);
+  final.Mass.resize(this->Header.Rows);
+  final.Rows = this->Header.Rows;
+  final.Columns = this->Header.Columns;
+  final.BytesPerValue = this->Header.BytesPerValue;
+  final.PayloadOffset = this->Header.PayloadOffset;
+  const std::string variable = VariableHeader(final);
+  if (FixedBytes + variable.size() > final.PayloadOffset)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io,
+      "the header of '" + this->Partial + "' grew beyond the room kept for it");
+  }
+  WriteAll(this->Descriptor, FixedHeader(final, variable), 0, this->Partial);
+  WriteAll(this->Descriptor, variable, FixedBytes, this->Partial);
+  if (this->Payload && msync(this->Payload, this->MappedBytes, MS_SYNC) != 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot flush", this->Partial));
+  }
+  if (fsync(this->Descriptor) != 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot sync", this->Partial));
+  }
+  if (rename(this->Partial.c_str(), this->Path.c_str()) != 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot rename to", this->Path));
+  }
+  this->Committed = true;
+  if (this->Payload)
+  {
+    munmap(this->Payload, this->MappedBytes);
+    this->Payload = nullptr;
+  }
+  close(this->Descriptor);
+  this->Descriptor = -1;
+  const int directory = open(DirectoryOf(this->Path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (directory >= 0)
+  {
+    fsync(directory);
+    close(directory);
+  }
+}
+
+//------------------------------------------------------------------------------
+void* MapBasisPayload(const std::string& path, const BasisFileHeader& header)
+{
+  const std::uint64_t bytes = header.PayloadBytes();
+  if (bytes == 0)
+  {
+    return nullptr;
+  }
+  const int descriptor = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0)
+  {
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot open the basis file", path));
+  }
+  void* mapped = mmap(
+    nullptr, bytes, PROT_READ, MAP_SHARED, descriptor, static_cast<off_t>(header.PayloadOffset));
+  const int mapError = errno;
+  close(descriptor);
+  if (mapped == MAP_FAILED)
+  {
+    errno = mapError;
+    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot map the basis file", path));
+  }
+  std::lock_guard<std::mutex> lock(RegistryMutex());
+  Registry()[mapped] = bytes;
+  return mapped;
+}
+
+//------------------------------------------------------------------------------
+void UnmapBasisPayload(void* payload)
+{
+  std::uint64_t bytes = 0;
+  {
+    std::lock_guard<std::mutex> lock(RegistryMutex());
+    const auto found = Registry().find(payload);
+    if (found == Registry().end())
+    {
+      return;
+    }
+    bytes = found->second;
+    Registry().erase(found);
+  }
+  munmap(payload, bytes);
+}
+
+//------------------------------------------------------------------------------
+StorageChoice ChooseBasisStorage(BasisStorage requested,
+  std::uint64_t inMemory,
+  std::uint64_t inFile,
+  std::uint64_t available,
+  std::uint64_t fileBytes,
+  std::uint64_t diskFree)
+{
+  StorageChoice choice;
+  const std::string memory =
+    "about " + ByteCount(inMemory) + " needed in memory, " + ByteCount(available) + " available";
+  const std::string disk =
+    ByteCount(fileBytes) + " file, " + ByteCount(diskFree) + " free on its disk";
+  if (requested == BasisStorage::InMemory)
+  {
+    choice.Chosen = BasisStorage::InMemory;
+    choice.Reason = "in memory, as asked (" + memory + ")";
+    return choice;
+  }
+  const bool diskFits = fileBytes <= diskFree;
+  if (requested == BasisStorage::File)
+  {
+    choice.Chosen = diskFits ? BasisStorage::File : BasisStorage::Automatic;
+    choice.Reason = "in a file, as asked (" + disk + ")";
+    if (!diskFits)
+    {
+      choice.Refusal = "The basis file does not fit on its disk: " + disk +
+        ". Free disk space, choose another BasisFileName (a disk with " + ByteCount(fileBytes) +
+        " free), compute fewer harmonics or set BasisPrecision to Float.";
+    }
+    return choice;
+  }
+  if (inMemory <= available)
+  {
+    choice.Chosen = BasisStorage::InMemory;
+    choice.Reason = "in memory: it fits (" + memory + ")";
+    return choice;
+  }
+  if (inFile <= available && diskFits)
+  {
+    choice.Chosen = BasisStorage::File;
+    choice.Reason = "in a file: it does not fit in memory (" + memory + "), it does in a file (" +
+      disk + ", " + ByteCount(inFile) + " of memory for the solve)";
+    return choice;
+  }
+  choice.Chosen = BasisStorage::Automatic;
+  choice.Refusal = "A file would not do either: " +
+    (inFile > available
+        ? "the solve alone needs about " + ByteCount(inFile) + " of memory"
+        : "the " + ByteCount(fileBytes) + " file needs a disk with that much free (" +
+          ByteCount(diskFree) + " free on its disk; name a BasisFileName on another)") +
+    ".";
+  return choice;
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t FreeDiskSpace(const std::string& directory)
+{
+  struct statvfs status;
+  if (statvfs(directory.c_str(), &status) != 0)
+  {
+    // Unknown (a missing directory): creating the file will say what is wrong.
+    return ~std::uint64_t(0);
+  }
+  return static_cast<std::uint64_t>(status.f_bavail) * static_cast<std::uint64_t>(status.f_frsize);
+}
+
+//------------------------------------------------------------------------------
+std::string DirectoryOf(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos)
+  {
+    return ".";
+  }
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+//------------------------------------------------------------------------------
+std::string ByteCount(std::uint64_t bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4)
+  {
+    value /= 1024.0;
+    ++unit;
+  }
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
+  return text.str();
+}
+} // namespace spectral

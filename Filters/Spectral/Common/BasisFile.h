@@ -1,0 +1,237 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BasisFile.h
+ * @brief A basis in a file: its format, its atomic writer, its checked reader, its read-only
+ *        mapping, the digest of a mesh, and the choice between memory and a file.
+ *
+ * The format (version 1, native byte order, recorded and checked):
+ *
+ *     offset 0   magic "MHBASIS\0" (8 bytes), uint32 version, uint32 byte-order mark 0x01020304
+ *            16  uint64 n (rows: the output's points), uint64 m (harmonics), uint32 bytes a
+ *                value (8 double, 4 float), uint32 reserved, uint64 mesh digest, uint64 payload
+ *                offset, uint64 header bytes, uint64 header checksum (FNV-1a of the header
+ *                after this fixed part)
+ *            80  the header: the options text (uint64 length, bytes), m eigenvalues, n lumped
+ *                masses (one per output point), the backward error and the residual (doubles),
+ *                the warnings (uint64 count, then each as uint64 length and bytes)
+ *     payload    n m values, row-major (tuple i = the m values of point i: the layout of a
+ *                vtkAOSDataArrayTemplate with m components), at a page-aligned offset
+ *
+ * The file's size is exactly payload offset + n m b: a shorter file is truncated, a longer one
+ * inconsistent. The payload has no checksum (reading 32 GB to check it would cost a minute);
+ * a file appears under its name only complete: BasisFileWriter writes `<name>.partial`, fsyncs
+ * and renames it, and removes it when it is not committed (an error or an abort).
+ *
+ * Writing band by band into a row-major file is strided (every band touches every row): the
+ * writer writes through a shared writable mapping of the file and lets the page cache combine
+ * a row's bands (Documentation/large-meshes.md: measured on 200K x 500; a file larger than the
+ * page cache rewrites pages per band).
+ *
+ * Mapping: MapBasisPayload maps the payload read-only and shared (PROT_READ, MAP_SHARED): its
+ * pages are page cache (RssFile), not the process's anonymous memory, are never charged against
+ * the commit limit, and the system evicts them under pressure. The mapping must not be written
+ * (a write is a segmentation fault). UnmapBasisPayload takes the pointer alone (the free
+ * function of a VTK array): a registry keeps each mapping's length.
+ *
+ * Used by vtkManifoldHarmonicBasis (Storage FILE); tested by Testing/Core/TestBasisFile.cxx.
+ */
+#ifndef spectral_BasisFile_h
+#define spectral_BasisFile_h
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace spectral
+{
+/// The version BasisFileWriter writes and ReadBasisFileHeader accepts.
+constexpr std::uint32_t BasisFileVersion = 1;
+
+/// Thrown for a file that is not a usable basis file, or an I/O failure; the message says which
+/// file and what is wrong.
+class BasisFileError : public std::runtime_error
+{
+public:
+  enum class Kind
+  {
+    /// The file cannot be opened, read, written or mapped (permissions, disk full, ...).
+    Io,
+    /// Not a basis file at all (another magic): never overwritten without being asked.
+    Foreign,
+    /// A basis file that cannot be used: another version or byte order, truncated, sizes that
+    /// disagree, a damaged header. It may be recomputed and overwritten.
+    Unusable
+  };
+  BasisFileError(Kind kind, const std::string& message)
+    : std::runtime_error(message)
+    , Which(kind)
+  {
+  }
+  Kind Which;
+};
+
+/// What a basis file holds besides its payload.
+struct BasisFileHeader
+{
+  std::uint64_t Rows = 0;
+  std::uint64_t Columns = 0;
+  /// 8 (double) or 4 (float).
+  std::uint32_t BytesPerValue = 8;
+  /// MeshDigest of the mesh the basis was computed on.
+  std::uint64_t MeshDigest = 0;
+  /// The options that change the basis, as "Name=value" lines (compared to decide a reuse;
+  /// DescribeOptionChanges names what differs).
+  std::string Options;
+  std::vector<double> Eigenvalues;
+  /// The lumped mass of each of the Rows points.
+  std::vector<double> Mass;
+  double BackwardError = 0.0;
+  double Residual = 0.0;
+  std::vector<std::string> Warnings;
+  /// Set by ReadBasisFileHeader (and BasisFileWriter): where the payload starts.
+  std::uint64_t PayloadOffset = 0;
+
+  /// n m b.
+  std::uint64_t PayloadBytes() const { return this->Rows * this->Columns * this->BytesPerValue; }
+};
+
+/**
+ * A 64-bit FNV-1a digest of a mesh: its point count and coordinates, its triangles and its
+ * tetrahedra, as bytes (so any change of a coordinate bit or a cell changes it, up to the
+ * 2^-64 chance of a collision).
+ * \param points n x 3 coordinates, row after row; \param triangles 3 indices a triangle; \param
+ * tets 4 indices a tetrahedron (either may be empty).
+ */
+std::uint64_t MeshDigest(const double* points,
+  std::size_t numPoints,
+  const int* triangles,
+  std::size_t numTriangles,
+  const int* tets,
+  std::size_t numTets);
+
+/// FNV-1a 64 of `bytes`, continuing from `hash` (the offset basis to start).
+std::uint64_t Fnv1a(const void* bytes,
+  std::size_t size,
+  std::uint64_t hash = 14695981039346656037ull);
+
+/**
+ * The lines of two options texts ("Name=value" a line) that differ, as "Name a -> b" joined by
+ * ", " ("" when they agree).
+ */
+std::string DescribeOptionChanges(const std::string& before, const std::string& now);
+
+/**
+ * The header of a basis file, checked: magic, version, byte order, header checksum, and the
+ * file's size against n, m and b.
+ * \throws BasisFileError (Io when it cannot be read; Foreign for another magic; Unusable
+ *         otherwise), naming the file and the fault.
+ */
+BasisFileHeader ReadBasisFileHeader(const std::string& path);
+
+/**
+ * Writes a basis file atomically: the constructor creates `<path>.partial` (replacing a stale
+ * one) sized for the payload, the bands are written as they come, Commit() flushes, fsyncs and
+ * renames it to `path`. A writer destroyed without Commit() removes the partial file.
+ */
+class BasisFileWriter
+{
+public:
+  /// \throws BasisFileError (Io) when the file cannot be created, sized or mapped.
+  BasisFileWriter(const std::string& path, const BasisFileHeader& header);
+  ~BasisFileWriter();
+  BasisFileWriter(const BasisFileWriter&) = delete;
+  BasisFileWriter& operator=(const BasisFileWriter&) = delete;
+
+  /**
+   * Writes columns [firstColumn, firstColumn + count) of the rows listed: value (r, c) of the
+   * column-major block `values` (rows x count, leading dimension `rows`) goes to each output row
+   * targets[e] with sources[e] == r. Output rows no target reaches stay 0 (a sparse file reads
+   * as zeros).
+   */
+  void WriteColumns(std::uint64_t firstColumn,
+    std::uint64_t count,
+    const double* values,
+    std::uint64_t rows,
+    const std::vector<int>& sources,
+    const std::vector<std::int64_t>& targets);
+
+  /**
+   * Completes the file: its header (eigenvalues, figures and warnings known only at the end may
+   * be set in `header`; n, m, b must not change), msync, fsync, rename to the final name, fsync
+   * of the directory. \throws BasisFileError (Io).
+   */
+  void Commit(const BasisFileHeader& header);
+
+  /// The path being written (`<path>.partial`).
+  const std::string& PartialPath() const { return this->Partial; }
+
+private:
+  void Discard();
+  std::string Path;
+  std::string Partial;
+  BasisFileHeader Header;
+  int Descriptor = -1;
+  unsigned char* Payload = nullptr;
+  std::uint64_t MappedBytes = 0;
+  bool Committed = false;
+};
+
+/**
+ * Maps the payload of a checked basis file read-only and shared.
+ * \return The first value (n m values of `header.BytesPerValue` bytes, row-major); release it
+ *         with UnmapBasisPayload. nullptr for an empty payload.
+ * \throws BasisFileError (Io) when it cannot be mapped.
+ */
+void* MapBasisPayload(const std::string& path, const BasisFileHeader& header);
+
+/// Unmaps a mapping of MapBasisPayload (the length is in a registry); ignores other pointers.
+void UnmapBasisPayload(void* payload);
+
+/// Where a basis is kept.
+enum class BasisStorage
+{
+  Automatic,
+  InMemory,
+  File
+};
+
+/// What ChooseBasisStorage decided and why (one sentence each).
+struct StorageChoice
+{
+  /// InMemory or File; Automatic when nothing fits (Refusal says why a file would not do: the
+  /// caller's memory error says the rest).
+  BasisStorage Chosen = BasisStorage::InMemory;
+  std::string Reason;
+  std::string Refusal;
+};
+
+/**
+ * The storage of a basis. AUTOMATIC: in memory when `inMemory` fits in `available`; else a file
+ * when `inFile` (the same computation without the output basis in memory) fits and the disk
+ * has `fileBytes` free; else refused. IN_MEMORY and FILE are taken as asked (FILE is still
+ * refused when the disk lacks room; the memory check of the solve itself stays with ComputeBasis).
+ * \param available Bytes of memory available (MemoryLimit or the system's).
+ * \param diskFree Bytes free on the file's disk.
+ */
+StorageChoice ChooseBasisStorage(BasisStorage requested,
+  std::uint64_t inMemory,
+  std::uint64_t inFile,
+  std::uint64_t available,
+  std::uint64_t fileBytes,
+  std::uint64_t diskFree);
+
+/// Bytes free for an unprivileged user on the disk that holds `directory` (statvfs); the
+/// largest value when unknown (creating the file then reports the fault).
+std::uint64_t FreeDiskSpace(const std::string& directory);
+
+/// The directory of a path ("." for a bare name).
+std::string DirectoryOf(const std::string& path);
+
+/// A byte count for people: "1.5 GiB", "380.0 MiB", "12 bytes".
+std::string ByteCount(std::uint64_t bytes);
+} // namespace spectral
+
+#endif

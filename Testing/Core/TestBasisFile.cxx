@@ -1,0 +1,275 @@
+// SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
+// SPDX-License-Identifier: BSD-3-Clause
+// The basis file (Filters/Spectral/Common/BasisFile.h): round trips through the writer, the
+// checked reader and the read-only mapping; damaged and foreign files refused with their fault;
+// a writer that is not committed leaves no file; the choice between memory and a file.
+#include "Checks.h"
+#include "Common/BasisFile.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+using namespace spectral;
+using namespace spectral::testing;
+
+namespace
+{
+//------------------------------------------------------------------------------
+// A fresh path in the temporary directory.
+std::string TempPath(const std::string& name)
+{
+  const char* dir = std::getenv("TMPDIR");
+  return std::string(dir && *dir ? dir : "/tmp") + "/TestBasisFile-" + std::to_string(getpid()) +
+    "-" + name;
+}
+
+bool Exists(const std::string& path)
+{
+  struct stat status;
+  return stat(path.c_str(), &status) == 0;
+}
+
+//------------------------------------------------------------------------------
+// A header and a column-major n x m block of distinct values; rows 0..n-2 of the block go to
+// output rows 1..n-1 (row 0 has no source: it must read as zeros).
+struct Sample
+{
+  BasisFileHeader Header;
+  std::vector<double> Block;
+  std::vector<int> Sources;
+  std::vector<std::int64_t> Targets;
+};
+
+Sample MakeSample(std::uint64_t n, std::uint64_t m, std::uint32_t bytes)
+{
+  Sample s;
+  s.Header.Rows = n;
+  s.Header.Columns = m;
+  s.Header.BytesPerValue = bytes;
+  s.Header.MeshDigest = 0x1234;
+  s.Header.Options = "NumberOfHarmonics=" + std::to_string(m) + "\nLaplacian=Cotangent\n";
+  for (std::uint64_t k = 0; k < m; ++k)
+  {
+    s.Header.Eigenvalues.push_back(0.5 * k);
+  }
+  s.Header.Mass.assign(n, 0.25);
+  s.Block.resize(n * m);
+  for (std::size_t i = 0; i < s.Block.size(); ++i)
+  {
+    s.Block[i] = 1.0 / (1.0 + i) + 1e-3 * i;
+  }
+  for (std::uint64_t r = 0; r + 1 < n; ++r)
+  {
+    s.Sources.push_back(static_cast<int>(r));
+    s.Targets.push_back(static_cast<std::int64_t>(r + 1));
+  }
+  return s;
+}
+
+// Writes the sample in bands of `band` columns and commits it.
+void WriteSample(const std::string& path, const Sample& s, std::uint64_t band)
+{
+  BasisFileWriter writer(path, s.Header);
+  const std::uint64_t n = s.Header.Rows;
+  for (std::uint64_t c = 0; c < s.Header.Columns; c += band)
+  {
+    const std::uint64_t count = std::min(band, s.Header.Columns - c);
+    writer.WriteColumns(c, count, s.Block.data() + c * n, n, s.Sources, s.Targets);
+  }
+  BasisFileHeader final = s.Header;
+  final.Warnings = { "a warning of the solve" };
+  final.Residual = 3e-12;
+  writer.Commit(final);
+}
+
+//------------------------------------------------------------------------------
+void RoundTrip()
+{
+  for (const std::uint32_t bytes : { 8u, 4u })
+  {
+    const std::string path = TempPath("roundtrip.mhb");
+    const Sample s = MakeSample(37, 11, bytes);
+    WriteSample(path, s, 4);
+    Check(Exists(path) && !Exists(path + ".partial"), "committed: the file, no partial file");
+    const BasisFileHeader h = ReadBasisFileHeader(path);
+    Check(h.Rows == 37 && h.Columns == 11 && h.BytesPerValue == bytes && h.MeshDigest == 0x1234,
+      "n, m, precision and digest read back");
+    Check(h.Options == s.Header.Options && h.Eigenvalues == s.Header.Eigenvalues &&
+        h.Mass == s.Header.Mass && h.Residual == 3e-12 && h.Warnings.size() == 1,
+      "options, eigenvalues, mass, figures and warnings read back");
+    Check(h.PayloadOffset % static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE)) == 0,
+      "the payload is page-aligned");
+    void* payload = MapBasisPayload(path, h);
+    double worst = 0.0;
+    bool zeroRow = true;
+    for (std::uint64_t i = 0; i < 37; ++i)
+    {
+      for (std::uint64_t k = 0; k < 11; ++k)
+      {
+        const double value = bytes == 8 ? static_cast<double*>(payload)[i * 11 + k]
+                                        : static_cast<float*>(payload)[i * 11 + k];
+        if (i == 0)
+        {
+          zeroRow = zeroRow && value == 0.0;
+          continue;
+        }
+        const double expected =
+          bytes == 8 ? s.Block[k * 37 + (i - 1)] : static_cast<float>(s.Block[k * 37 + (i - 1)]);
+        worst = std::max(worst, std::abs(value - expected));
+      }
+    }
+    CheckBelow(worst, 0.0, "row-major payload equals the bands, bit for bit");
+    Check(zeroRow, "a row no source reaches reads as zeros");
+    UnmapBasisPayload(payload);
+    std::remove(path.c_str());
+  }
+}
+
+//------------------------------------------------------------------------------
+// Expects ReadBasisFileHeader to throw `kind`; prints the message.
+void ExpectRefused(const std::string& path, BasisFileError::Kind kind, const std::string& what)
+{
+  try
+  {
+    ReadBasisFileHeader(path);
+    Check(false, what + ": accepted");
+  }
+  catch (const BasisFileError& e)
+  {
+    Check(e.Which == kind, what + ": " + e.what());
+  }
+}
+
+void Patch(const std::string& path, long offset, const std::string& bytes)
+{
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekp(offset);
+  file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+void DamagedAndForeignFiles()
+{
+  const std::string path = TempPath("damaged.mhb");
+  const Sample s = MakeSample(300, 40, 8);
+  const auto fresh = [&]() { WriteSample(path, s, 16); };
+
+  fresh();
+  Check(
+    truncate(path.c_str(), static_cast<off_t>(ReadBasisFileHeader(path).PayloadOffset + 100)) == 0,
+    "truncated the payload");
+  ExpectRefused(path, BasisFileError::Kind::Unusable, "a truncated payload");
+  Check(truncate(path.c_str(), 50) == 0, "truncated into the header");
+  ExpectRefused(path, BasisFileError::Kind::Unusable, "a file cut in its header");
+
+  fresh();
+  Patch(path, 8, std::string("\x02\0\0\0", 4));
+  ExpectRefused(path, BasisFileError::Kind::Unusable, "another version");
+
+  fresh();
+  const std::uint64_t m = 41; // n m no longer matches the file's size
+  Patch(path, 24, std::string(reinterpret_cast<const char*>(&m), 8));
+  ExpectRefused(path, BasisFileError::Kind::Unusable, "m inconsistent with the file's size");
+
+  fresh();
+  Patch(path, 100, "x"); // inside the options text
+  ExpectRefused(path, BasisFileError::Kind::Unusable, "a damaged header");
+
+  {
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    std::mt19937 random(7);
+    for (int i = 0; i < 100000; ++i)
+    {
+      file.put(static_cast<char>(random()));
+    }
+  }
+  ExpectRefused(path, BasisFileError::Kind::Foreign, "random bytes");
+  {
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    file << "MHB";
+  }
+  ExpectRefused(path, BasisFileError::Kind::Foreign, "a three-byte file");
+  std::remove(path.c_str());
+  ExpectRefused(path, BasisFileError::Kind::Io, "a missing file");
+}
+
+//------------------------------------------------------------------------------
+void UncommittedLeavesNothing()
+{
+  const std::string path = TempPath("aborted.mhb");
+  const Sample s = MakeSample(50, 10, 8);
+  WriteSample(path, s, 10); // an older complete file under the name
+  const BasisFileHeader before = ReadBasisFileHeader(path);
+  {
+    BasisFileWriter writer(path, s.Header);
+    writer.WriteColumns(0, 5, s.Block.data(), 50, s.Sources, s.Targets);
+    Check(Exists(writer.PartialPath()), "the bands go to the partial file while it is written");
+    // Destroyed without Commit: an abort or an error of the solve.
+  }
+  Check(!Exists(path + ".partial"), "an uncommitted writer removes its partial file");
+  Check(ReadBasisFileHeader(path).Options == before.Options,
+    "the complete file under the name is untouched until a commit replaces it");
+  std::remove(path.c_str());
+}
+
+//------------------------------------------------------------------------------
+void StorageChoiceRules()
+{
+  const std::uint64_t GB = 1ull << 30;
+  StorageChoice c = ChooseBasisStorage(BasisStorage::Automatic, 2 * GB, GB, 3 * GB, GB, 10 * GB);
+  Check(c.Chosen == BasisStorage::InMemory, "automatic: in memory when it fits: " + c.Reason);
+  c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, GB, 3 * GB, 4 * GB, 10 * GB);
+  Check(c.Chosen == BasisStorage::File, "automatic: a file when only the file fits: " + c.Reason);
+  c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, GB, 3 * GB, 4 * GB, 2 * GB);
+  Check(c.Chosen == BasisStorage::Automatic &&
+      c.Refusal.find("4.0 GiB file needs a disk") != std::string::npos,
+    "automatic: refused, naming the disk room needed: " + c.Refusal);
+  c = ChooseBasisStorage(BasisStorage::Automatic, 5 * GB, 4 * GB, 3 * GB, GB, 10 * GB);
+  Check(c.Chosen == BasisStorage::Automatic &&
+      c.Refusal.find("the solve alone needs about 4.0 GiB") != std::string::npos,
+    "automatic: refused when even the solve does not fit: " + c.Refusal);
+  c = ChooseBasisStorage(BasisStorage::File, GB, GB, 3 * GB, 4 * GB, 2 * GB);
+  Check(c.Chosen == BasisStorage::Automatic && !c.Refusal.empty(),
+    "file: refused without disk room: " + c.Refusal);
+  c = ChooseBasisStorage(BasisStorage::InMemory, 5 * GB, GB, 3 * GB, GB, 10 * GB);
+  Check(c.Chosen == BasisStorage::InMemory, "in memory: as asked (the solve's check refuses)");
+}
+
+//------------------------------------------------------------------------------
+void DigestAndOptions()
+{
+  std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+  const std::vector<int> triangle = { 0, 1, 2 };
+  const std::uint64_t d = MeshDigest(points.data(), 3, triangle.data(), 1, nullptr, 0);
+  points[4] = std::nextafter(points[4], 1.0);
+  Check(MeshDigest(points.data(), 3, triangle.data(), 1, nullptr, 0) != d,
+    "one coordinate bit changes the digest");
+  const std::vector<int> flipped = { 0, 2, 1 };
+  points[4] = 0.0;
+  Check(MeshDigest(points.data(), 3, flipped.data(), 1, nullptr, 0) != d,
+    "the order of a cell's points changes the digest");
+  Check(MeshDigest(points.data(), 3, triangle.data(), 1, nullptr, 0) == d, "the digest is stable");
+  const std::string changes = DescribeOptionChanges("A=1\nB=2\nC=3\n", "A=1\nB=5\nD=4\n");
+  Check(changes == "B 2 -> 5, D (none) -> 4, C 3 -> (none)", "option changes named: " + changes);
+  Check(DescribeOptionChanges("A=1\n", "A=1\n").empty(), "equal options: no change");
+}
+
+const Case Cases[] = {
+  { "RoundTrip", RoundTrip },
+  { "DamagedAndForeignFiles", DamagedAndForeignFiles },
+  { "UncommittedLeavesNothing", UncommittedLeavesNothing },
+  { "StorageChoiceRules", StorageChoiceRules },
+  { "DigestAndOptions", DigestAndOptions },
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return RunCases(argc, argv, Cases);
+}
