@@ -21,6 +21,11 @@ namespace spectral
 {
 namespace
 {
+/// The landmark heat kernels: their number of times, and the harmonic (counted from the first
+/// non-constant one) whose 1 / lambda is the shortest time (see LandmarkKernelTimes).
+constexpr int NumberOfLandmarkKernelTimes = 16;
+constexpr Eigen::Index LandmarkKernelHarmonics = 10;
+
 /// Query rows and database rows per block of the nearest-row search: a block of distances is
 /// QueryBlock x DatabaseBlock doubles (2 MB) per thread.
 constexpr Eigen::Index QueryBlock = 256;
@@ -89,31 +94,32 @@ Spectrum SpectrumOf(const SpectralShape& shape)
   return spectrum;
 }
 
-/// The energies both shapes use: from the first non-zero eigenvalue to the m-th that both
-/// have, the larger first and the smaller last of the two shapes.
+/// The index of the first non-zero eigenvalue of a spectrum (m if there is none).
+Eigen::Index FirstNonZero(const Spectrum& spectrum)
+{
+  Eigen::Index k = 0;
+  while (k < spectrum.Lambda.size() && !spectrum.NonZero[static_cast<std::size_t>(k)])
+  {
+    ++k;
+  }
+  return k;
+}
+
+/// The energies both shapes use: from the first non-zero eigenvalue to the last of the
+/// `common` first ones, the larger first and the smaller last of the two shapes.
 WaveKernelEnergies CommonEnergies(
   const Spectrum& source, const Spectrum& target, Eigen::Index common, int count)
 {
-  const auto firstNonZero = [](const Spectrum& s, Eigen::Index upTo)
+  const Eigen::Index first = std::max(FirstNonZero(source), FirstNonZero(target));
+  if (first >= common - 1)
   {
-    for (Eigen::Index k = 0; k < upTo; ++k)
-    {
-      if (s.NonZero[static_cast<std::size_t>(k)])
-      {
-        return s.Lambda[k];
-      }
-    }
-    throw InvalidInput("a basis of a functional map has no non-constant harmonic among its "
-                       "first " + std::to_string(upTo) + " (every eigenvalue is zero)");
-  };
+    throw InvalidInput("a functional map needs at least two non-constant harmonics among the "
+                       "first " + std::to_string(common) + " of both shapes");
+  }
   Spectrum both;
   both.Lambda.resize(2);
-  both.Lambda << std::max(firstNonZero(source, common), firstNonZero(target, common)),
+  both.Lambda << std::max(source.Lambda[first], target.Lambda[first]),
     std::min(source.Lambda[common - 1], target.Lambda[common - 1]);
-  if (!(both.Lambda[1] > both.Lambda[0]))
-  {
-    both.Lambda[1] = std::max(source.Lambda[common - 1], target.Lambda[common - 1]);
-  }
   both.NonZero.assign(2, true);
   return DefaultWaveKernelEnergies(both, count);
 }
@@ -138,8 +144,46 @@ DenseMatrix Project(const SpectralShape& shape, const RowMatrix& F, Eigen::Index
   return shape.Harmonics.leftCols(k).transpose() * weighted;
 }
 
-/// The coefficients (on the first k harmonics) of the wave kernels between each landmark
-/// point and every point, one column per landmark and energy, each of unit norm.
+/// The times of the landmark heat kernels: NumberOfLandmarkKernelTimes, log-spaced over
+/// [1 / lambda_K, 1 / lambda_1] with lambda_1 the first non-zero eigenvalue and lambda_K the
+/// LandmarkKernelHarmonics-th after it (at most the k-th), the larger lambda_1 and the smaller
+/// lambda_K of the two shapes.
+Vector LandmarkKernelTimes(const Spectrum& source, const Spectrum& target, Eigen::Index k)
+{
+  const Eigen::Index first = std::max(FirstNonZero(source), FirstNonZero(target));
+  if (first >= k)
+  {
+    throw InvalidInput("landmarks need a non-constant harmonic among the first " +
+      std::to_string(k) + " of both shapes (raise InitialSize)");
+  }
+  const Eigen::Index last = std::min<Eigen::Index>(first + LandmarkKernelHarmonics - 1, k - 1);
+  const double longest = 1.0 / std::max(source.Lambda[first], target.Lambda[first]);
+  const double shortest =
+    std::min(longest, 1.0 / std::min(source.Lambda[last], target.Lambda[last]));
+  Vector times(NumberOfLandmarkKernelTimes);
+  for (int j = 0; j < NumberOfLandmarkKernelTimes; ++j)
+  {
+    times[j] = shortest *
+      std::pow(longest / shortest, j / static_cast<double>(NumberOfLandmarkKernelTimes - 1));
+  }
+  return times;
+}
+
+/// e^{-lambda_k t_j} (m by T), with the zero eigenvalues counted as exactly 0.
+DenseMatrix HeatWeights(const Vector& lambda, const Spectrum& spectrum, const Vector& times)
+{
+  DenseMatrix W(lambda.size(), times.size());
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    const double l = spectrum.NonZero[static_cast<std::size_t>(k)] ? lambda[k] : 0.0;
+    W.row(k) = (-l * times.transpose().array()).exp().matrix();
+  }
+  return W;
+}
+
+/// The coefficients (on the first k harmonics) of the kernels sum_k W_kj h_k(p) h_k(x) between
+/// each landmark point p and every point x, one column per landmark and column of W, each
+/// of unit norm over all the harmonics.
 DenseMatrix LandmarkCoefficients(const SpectralShape& shape, const DenseMatrix& W,
   const std::vector<int>& points, Eigen::Index k)
 {
@@ -467,7 +511,7 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   // Weighted descriptors, each family divided by its number of columns.
   const Eigen::Index q = A.cols();
   const Eigen::Index L = static_cast<Eigen::Index>(options.Landmarks.size());
-  const Eigen::Index ql = options.LandmarkWeight > 0.0 ? L * energies.Energies.size() : 0;
+  const Eigen::Index ql = options.LandmarkWeight > 0.0 ? L * NumberOfLandmarkKernelTimes : 0;
   DenseMatrix Aw(k0, q + ql);
   DenseMatrix Bw(k0, q + ql);
   const double descriptorScale = std::sqrt(options.DescriptorWeight / static_cast<double>(q));
@@ -484,12 +528,11 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
     }
     const double landmarkScale =
       std::sqrt(options.DescriptorWeight * options.LandmarkWeight / static_cast<double>(ql));
-    Aw.rightCols(ql) =
-      landmarkScale * LandmarkCoefficients(source, WaveKernelWeights(spectrum1, energies),
-        points1, k0);
-    Bw.rightCols(ql) =
-      landmarkScale * LandmarkCoefficients(target, WaveKernelWeights(spectrum2, energies),
-        points2, k0);
+    const Vector times = LandmarkKernelTimes(spectrum1, spectrum2, k0);
+    const DenseMatrix W1 = HeatWeights(source.Eigenvalues, spectrum1, times);
+    const DenseMatrix W2 = HeatWeights(target.Eigenvalues, spectrum2, times);
+    Aw.rightCols(ql) = landmarkScale * LandmarkCoefficients(source, W1, points1, k0);
+    Bw.rightCols(ql) = landmarkScale * LandmarkCoefficients(target, W2, points2, k0);
   }
   result.InitialMap = SolveRows(Aw, Bw, source.Eigenvalues.head(k0),
     target.Eigenvalues.head(k0), options.CommutativityWeight);

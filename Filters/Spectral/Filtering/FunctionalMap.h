@@ -24,14 +24,19 @@
  *    k by k entries, which makes both terms free of units). The commutativity term is the sum of
  *    (lambda2_i - lambda1_j)^2 C_ij^2, diagonal in the entries of C, so the problem splits into
  *    one k by k symmetric system per row of C.
- * 3. Landmarks (pairs of a source and a target point) add descriptors: for each pair (p1, p2)
- *    and each energy e, the wave kernel between the landmark and every point,
- *    w(p, x) = sum_k g_k(e) phi_k(p) phi_k(x) / sum_k g_k(e), whose coefficients are
- *    g_k(e) phi_k(p) / sum_k g_k(e): no work on the points, O(L E k) in all, weighted by
- *    LandmarkWeight relative to the other descriptors. The refinement keeps them as hard
- *    constraints: each target landmark corresponds to its source landmark in every point map.
- *    One landmark off every symmetry axis tells a shape from its mirror image; two or three
- *    are safer.
+ * 3. Landmarks (pairs of a source and a target point) add descriptors: for each pair (p1, p2),
+ *    the heat kernels k_t(p, x) = sum_k e^{-lambda_k t} phi_k(p) phi_k(x) at 16 times log-spaced
+ *    over [1 / lambda_K, 1 / lambda_1] (lambda_1 the first non-zero eigenvalue, K the tenth
+ *    harmonic after it or the last of InitialSize), whose coefficients e^{-lambda_k t} phi_k(p)
+ *    need no work on the points: O(16 L k) for L landmarks, nothing per point. They are smooth
+ *    at the scale of the tenth harmonic's wavelength, so a landmark a few edges from the exact
+ *    point costs little (the wave kernel at the landmark, as pyFM uses, resolves the highest
+ *    frequencies and was measured to fail with landmarks one edge off). Their weight is
+ *    LandmarkWeight relative to all the other descriptors together. The refinement keeps them as
+ *    hard constraints: each target landmark corresponds to its source landmark in every point
+ *    map (free). One landmark off every symmetry axis tells a shape from its mirror image; two
+ *    or three are safer, and landmarks that are images of each other by a symmetry of the shape
+ *    do not break it.
  * 4. Refinement (Melzi et al., "ZoomOut: Spectral Upsampling for Efficient Shape
  *    Correspondence", ACM TOG 38(6), 2019): from k = InitialSize to FinalSize by ZoomOutStep,
  *    the point map of C (each target point j to the source point whose row of Phi1_k is nearest
