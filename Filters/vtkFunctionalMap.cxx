@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 #include <utility>
 
 vtkStandardNewMacro(vtkFunctionalMap);
@@ -304,8 +305,8 @@ vtkSmartPointer<vtkIdTypeArray> PointIdsArray(const std::vector<int>& ids)
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
-// The internal bases (one per input port, kept between executions), the landmark lists and the
-// progress offset of the basis being computed.
+// The internal bases (one per input port, kept between executions), the landmark lists, the
+// progress offset of the basis being computed and its error.
 struct vtkFunctionalMap::Internals
 {
   struct Slot
@@ -319,6 +320,7 @@ struct vtkFunctionalMap::Internals
   vtkNew<vtkIdList> SourceLandmarks;
   vtkNew<vtkIdList> TargetLandmarks;
   double ProgressOffset = 0.0;
+  std::string BasisError; // the last error of an internal basis during its update
 };
 
 //------------------------------------------------------------------------------
@@ -470,6 +472,10 @@ bool vtkFunctionalMap::UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& w
     slot.Basis = vtkSmartPointer<vtkManifoldHarmonicBasis>::New();
     slot.Basis->AddObserver(vtkCommand::ProgressEvent, this, &vtkFunctionalMap::ForwardProgress);
     slot.Basis->AddObserver(vtkCommand::WarningEvent, this, &vtkFunctionalMap::ForwardWarning);
+    slot.Basis->AddObserver(vtkCommand::ErrorEvent, this, &vtkFunctionalMap::RecordBasisError);
+    // Its executive's "returned failure" follows the basis's own error: kept if alone.
+    slot.Basis->GetExecutive()->AddObserver(
+      vtkCommand::ErrorEvent, this, &vtkFunctionalMap::RecordBasisError);
   }
   // A new input (or the same one modified) solves again; new map settings alone do not.
   if (input != slot.Data.GetPointer() || input->GetMTime() != slot.Time)
@@ -487,11 +493,18 @@ bool vtkFunctionalMap::UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& w
   slot.Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   slot.Basis->SetNumberOfThreads(this->NumberOfThreads);
   slot.Basis->SetAbortExecute(this->GetAbortExecute());
+  this->Internal->BasisError.clear();
   slot.Basis->Update();
   if (this->GetAbortExecute() || slot.Basis->GetAbortExecute())
   {
     slot.Basis->Modified(); // incomplete: solved afresh next time
     return false;
+  }
+  if (!this->Internal->BasisError.empty())
+  {
+    // The internal basis's error as this filter's one message (it names the input).
+    throw spectral::InvalidInput(std::string("the basis of the ") + RoleOfPort[port] +
+      " failed: " + this->Internal->BasisError);
   }
   withBasis = slot.Basis->GetOutput();
   return true;
@@ -504,6 +517,15 @@ void vtkFunctionalMap::ForwardProgress(vtkObject* caller, unsigned long, void* d
   if (this->GetAbortExecute())
   {
     static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkFunctionalMap::RecordBasisError(vtkObject*, unsigned long, void* data)
+{
+  if (this->Internal->BasisError.empty())
+  {
+    this->Internal->BasisError = data ? static_cast<const char*>(data) : "unknown error";
   }
 }
 

@@ -62,7 +62,8 @@
  * an error that says so: use landmarks).
  *
  * Errors (vtkErrorMacro, both outputs empty): a missing or empty input, an input without
- * triangles or basis arrays, inconsistent basis arrays, sizes larger than a basis, landmark lists
+ * triangles or basis arrays, an internal basis that fails (its error becomes this filter's one
+ * message, naming the input; its warnings become this filter's), inconsistent basis arrays, sizes larger than a basis, landmark lists
  * of different lengths or with ids out of range, an array named in both SmoothArrays and
  * LabelArrays or missing from the source, an integer array in SmoothArrays, distributed runs
  * (several processes: both whole surfaces are needed on one process). An aborted execution
@@ -292,6 +293,9 @@ private:
   bool UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& withBasis);
   /// The internal bases' progress as this filter's (the first half); passes an abort on.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
+  /// Keeps the first error of an internal basis (or of its executive) during an update, which
+  /// Execute reports as this filter's one error.
+  void RecordBasisError(vtkObject* caller, unsigned long event, void* data);
 
   std::unique_ptr<Internals> Internal;
 

@@ -547,7 +547,8 @@ bool FailsWith(vtkFunctionalMap* map, const std::string& expected)
 
 //------------------------------------------------------------------------------
 // Errors: a missing source, landmark lists of different lengths or out of range, an integer
-// array through the functional map, an array on both lists or not on the source.
+// array through the functional map, an array on both lists or not on the source, a size above
+// the bases, an internal basis that fails (its error becomes the filter's, naming the input).
 bool TestErrors()
 {
   const Sheet source = Source(), target = Target();
@@ -576,6 +577,14 @@ bool TestErrors()
   map->RemoveAllLabelArrays();
   map->SetFinalSize(Harmonics + 1);
   ok &= FailsWith(map, "Functional map failed");
+  map->SetFinalSize(0);
+  {
+    // An internal basis's error is this filter's one error, naming the input.
+    const Sheet broken = Target();
+    broken.Mesh->GetPoints()->SetPoint(5, std::nan(""), 0.0, 0.0);
+    auto failing = MapOf(source.Mesh, broken.Mesh);
+    ok &= FailsWith(failing, "the basis of the target (input port 0, Input) failed: ");
+  }
   map->SetFinalSize(0);
   map->GetExecutive()->Update();
   ok &= Check(map->GetOutput()->GetNumberOfPoints() == target.Mesh->GetNumberOfPoints(),
