@@ -36,6 +36,12 @@ constexpr int DefaultFunctionalMapInitialSize = 30;
 constexpr int DefaultFunctionalMapFinalSize = DefaultNumberOfHarmonics;
 /// The growth of k per ZoomOut iteration (Melzi et al. 2019 use 1).
 constexpr int DefaultZoomOutStep = 1;
+/// The points of each shape the ZoomOut iterations run on (farthest-point samples) when a
+/// shape has more: each iteration's nearest-neighbour search costs O(samples^2 k) instead of
+/// O(n1 n2 k), and the final point map is on every point. pyFM subsamples likewise. Measured
+/// on 13,536 and 19,942 points (TestFunctionalMap LargeScansWithDefaults): 2000 samples 7.8 s
+/// and 0.32% of the diameter, 3000 samples 14.2 s and 0.28%.
+constexpr int DefaultZoomOutSamples = 2000;
 /// The wave kernel energies of the functional map's descriptors.
 constexpr int DefaultNumberOfMapDescriptors = 50;
 /// The weight of the commutativity with the Laplacians relative to descriptor preservation

@@ -274,9 +274,10 @@ void CheckOptions(const FunctionalMapOptions& options, const SpectralShape& sour
     throw InvalidInput("the orientation term of functional maps is not yet available: use "
                        "landmarks to tell a shape from its mirror image");
   }
-  if (options.ZoomOutStep < 1 || options.NumberOfDescriptors < 1)
+  if (options.ZoomOutStep < 1 || options.NumberOfDescriptors < 1 || options.ZoomOutSamples < 0)
   {
-    throw InvalidInput("the ZoomOut step and the number of descriptors must be at least 1");
+    throw InvalidInput("the ZoomOut step and the number of descriptors must be at least 1, the "
+                       "ZoomOut samples at least 0");
   }
   const auto bad = [](double w) { return !(w >= 0.0) || !std::isfinite(w); };
   if (bad(options.DescriptorWeight) || !(options.DescriptorWeight > 0.0) ||
@@ -314,6 +315,116 @@ std::vector<int> PointMapWithLandmarks(const SpectralShape& source, const Spectr
     ids[static_cast<std::size_t>(pair.second)] = pair.first;
   }
   return ids;
+}
+
+/**
+ * The map of a point map on sample points: C minimizing sum_j W_j ||Phi2_k(j) C - Phi1_k(ids_j)||^2,
+ * i.e. (P2^T W P2) C = P2^T W Pi P1, with W the target's masses. On all the points of a shape,
+ * P2^T D2 P2 = I and this is Phi2^T D2 Pi Phi1 (FunctionalMapFromPointMap); on samples the
+ * Gram matrix is solved for.
+ */
+DenseMatrix MapOfSamples(const SpectralShape& source, const SpectralShape& target,
+  const std::vector<int>& ids, Eigen::Index k)
+{
+  const Eigen::Index n2 = target.Harmonics.rows();
+  RowMatrix weighted(n2, k);
+  RowMatrix matched = RowMatrix::Zero(n2, k);
+  for (Eigen::Index j = 0; j < n2; ++j)
+  {
+    const int i = ids[static_cast<std::size_t>(j)];
+    const double w = i >= 0 ? target.Mass[j] : 0.0;
+    weighted.row(j) = w * target.Harmonics.row(j).head(k);
+    if (i >= 0)
+    {
+      matched.row(j) = source.Harmonics.row(i).head(k);
+    }
+  }
+  const DenseMatrix gram = weighted.transpose() * target.Harmonics.leftCols(k);
+  return gram.ldlt().solve(DenseMatrix(weighted.transpose() * matched));
+}
+
+/**
+ * `count` points of positive mass spread over the shape by farthest-point sampling (in 3D when
+ * the shape has its points, else in the embedding of its first three non-constant harmonics),
+ * starting from the given points (the landmarks) or from the first point of positive mass;
+ * ties go to the smallest index. O(n count).
+ */
+std::vector<int> FarthestPoints(const SpectralShape& shape, const Spectrum& spectrum,
+  Eigen::Index count, const std::vector<int>& start)
+{
+  const Eigen::Index n = shape.Harmonics.rows();
+  Points where(n, 3);
+  if (shape.Vertices.rows() == n)
+  {
+    where = shape.Vertices;
+  }
+  else
+  {
+    where.setZero();
+    Eigen::Index c = 0;
+    for (Eigen::Index k = FirstNonZero(spectrum); k < shape.Harmonics.cols() && c < 3; ++k, ++c)
+    {
+      where.col(c) = shape.Harmonics.col(k) / std::sqrt(spectrum.Lambda[k]);
+    }
+  }
+  Vector distance = Vector::Constant(n, std::numeric_limits<double>::infinity());
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    if (!(shape.Mass[i] > 0.0))
+    {
+      distance[i] = -1.0; // never chosen
+    }
+  }
+  std::vector<int> chosen;
+  const auto take = [&](Eigen::Index p)
+  {
+    chosen.push_back(static_cast<int>(p));
+    distance = distance.cwiseMin((where.rowwise() - where.row(p)).rowwise().squaredNorm());
+    distance[p] = -1.0;
+  };
+  for (int p : start)
+  {
+    if (distance[p] >= 0.0)
+    {
+      take(p);
+    }
+  }
+  if (chosen.empty())
+  {
+    Eigen::Index first = 0;
+    while (!(shape.Mass[first] > 0.0))
+    {
+      ++first;
+    }
+    take(first);
+  }
+  while (static_cast<Eigen::Index>(chosen.size()) < count)
+  {
+    Eigen::Index farthest = 0;
+    if (distance.maxCoeff(&farthest) < 0.0)
+    {
+      break; // every point of positive mass is taken
+    }
+    take(farthest);
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+/// The rows `points` of a shape: its basis and eigenvalues, and the weight 1 for each point
+/// (farthest-point samples cover about equal areas, whatever the masses of the points).
+SpectralShape Restricted(const SpectralShape& shape, const std::vector<int>& points)
+{
+  SpectralShape part;
+  part.Harmonics.resize(static_cast<Eigen::Index>(points.size()), shape.Harmonics.cols());
+  part.Mass.resize(static_cast<Eigen::Index>(points.size()));
+  for (std::size_t r = 0; r < points.size(); ++r)
+  {
+    part.Harmonics.row(static_cast<Eigen::Index>(r)) = shape.Harmonics.row(points[r]);
+    part.Mass[static_cast<Eigen::Index>(r)] = 1.0;
+  }
+  part.Eigenvalues = shape.Eigenvalues;
+  return part;
 }
 
 std::vector<bool> PositiveMass(const Vector& mass)
@@ -486,6 +597,12 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   std::tie(result.InitialSize, result.FinalSize) =
     ResolveSizes(options, source.Harmonics.cols(), target.Harmonics.cols());
   const Eigen::Index k0 = result.InitialSize;
+  if (options.ZoomOutSamples > 0 && options.ZoomOutSamples < 2 * result.FinalSize)
+  {
+    throw InvalidInput("ZoomOutSamples (" + std::to_string(options.ZoomOutSamples) +
+      ") must be 0 (every point) or at least twice the final size of the map (" +
+      std::to_string(2 * result.FinalSize) + ")");
+  }
   const Eigen::Index common = std::min(source.Harmonics.cols(), target.Harmonics.cols());
 
   // Descriptors and the initial map.
@@ -541,23 +658,60 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   result.EstimateSeconds = SecondsSince(start);
   monitor.Report(0.2);
 
-  // ZoomOut.
+  // ZoomOut, on samples of both shapes when they have more points than ZoomOutSamples.
   monitor.Begin("Refine");
   const auto refine = std::chrono::steady_clock::now();
+  const Eigen::Index samples = options.ZoomOutSamples;
+  const bool sampled = samples > 0 && result.FinalSize > result.InitialSize &&
+    (source.Harmonics.rows() > samples || target.Harmonics.rows() > samples);
+  SpectralShape part1;
+  SpectralShape part2;
+  FunctionalMapOptions partOptions = options;
+  if (sampled)
+  {
+    std::vector<int> start1;
+    std::vector<int> start2;
+    for (const auto& pair : options.Landmarks)
+    {
+      start1.push_back(pair.first);
+      start2.push_back(pair.second);
+    }
+    const std::vector<int> points1 = FarthestPoints(source, spectrum1, samples, start1);
+    const std::vector<int> points2 = FarthestPoints(target, spectrum2, samples, start2);
+    part1 = Restricted(source, points1);
+    part2 = Restricted(target, points2);
+    // The landmarks are among the samples: their indices there.
+    for (auto& pair : partOptions.Landmarks)
+    {
+      pair.first = static_cast<int>(
+        std::lower_bound(points1.begin(), points1.end(), pair.first) - points1.begin());
+      pair.second = static_cast<int>(
+        std::lower_bound(points2.begin(), points2.end(), pair.second) - points2.begin());
+    }
+    result.Samples = { static_cast<int>(points1.size()), static_cast<int>(points2.size()) };
+  }
+  const SpectralShape& work1 = sampled ? part1 : source;
+  const SpectralShape& work2 = sampled ? part2 : target;
   DenseMatrix C = result.InitialMap;
   monitor.ThrowIfCancelled();
-  std::vector<int> ids = PointMapWithLandmarks(source, target, C, options);
+  std::vector<int> ids = PointMapWithLandmarks(work1, work2, C, partOptions);
   result.Iterations = 1;
   const int steps = (result.FinalSize - result.InitialSize + options.ZoomOutStep - 1) /
     options.ZoomOutStep;
   for (int k = result.InitialSize; k < result.FinalSize;)
   {
     k = std::min(k + options.ZoomOutStep, result.FinalSize);
-    C = FunctionalMapFromPointMap(source, target, ids, k);
+    C = sampled ? MapOfSamples(work1, work2, ids, k)
+                : FunctionalMapFromPointMap(work1, work2, ids, k);
     monitor.ThrowIfCancelled();
-    ids = PointMapWithLandmarks(source, target, C, options);
-    monitor.Report(0.2 + 0.8 * result.Iterations / static_cast<double>(steps + 1));
+    ids = PointMapWithLandmarks(work1, work2, C, partOptions);
+    monitor.Report(0.2 + 0.7 * result.Iterations / static_cast<double>(steps + 1));
     ++result.Iterations;
+  }
+  if (sampled)
+  {
+    // The point map of the final C on every point.
+    ids = PointMapWithLandmarks(source, target, C, options);
   }
   result.Map = C;
   result.CorrespondingPointIds = std::move(ids);

@@ -95,6 +95,10 @@ struct FunctionalMapOptions
   int FinalSize = 0;
   /// Growth of k per ZoomOut iteration, >= 1.
   int ZoomOutStep = DefaultZoomOutStep;
+  /// The ZoomOut iterations run on this many points of each shape (farthest-point samples,
+  /// landmarks included) when a shape has more; the final point map is on every point. 0: on
+  /// every point.
+  int ZoomOutSamples = DefaultZoomOutSamples;
   /// Wave kernel energies per shape, >= 1.
   int NumberOfDescriptors = DefaultNumberOfMapDescriptors;
   /// Weight of descriptor preservation, > 0.
@@ -125,8 +129,11 @@ struct FunctionalMapResult
   /// The resolved sizes.
   int InitialSize = 0;
   int FinalSize = 0;
-  /// Number of ZoomOut point maps (refinement iterations).
+  /// Number of ZoomOut point maps (refinement iterations; with samples, not counting the final
+  /// point map on every point).
   int Iterations = 0;
+  /// The points of the source and of the target the iterations ran on ({0, 0}: all).
+  std::pair<int, int> Samples = { 0, 0 };
   /// ||C A - B|| / ||B|| of the initial map on the (non-landmark) descriptors.
   double DescriptorResidual = 0.0;
   /// Seconds for the descriptors and the initial map, and for the refinement.
