@@ -336,6 +336,7 @@ vtkFunctionalMap::vtkFunctionalMap()
   this->InitialSize = defaults.InitialSize;
   this->FinalSize = defaults.FinalSize;
   this->ZoomOutStep = defaults.ZoomOutStep;
+  this->ZoomOutSamples = defaults.ZoomOutSamples;
   this->NumberOfDescriptors = defaults.NumberOfDescriptors;
   this->DescriptorWeight = defaults.DescriptorWeight;
   this->CommutativityWeight = defaults.CommutativityWeight;
@@ -421,6 +422,7 @@ int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable
   options.InitialSize = this->InitialSize;
   options.FinalSize = this->FinalSize;
   options.ZoomOutStep = this->ZoomOutStep;
+  options.ZoomOutSamples = this->ZoomOutSamples;
   options.NumberOfDescriptors = this->NumberOfDescriptors;
   options.DescriptorWeight = this->DescriptorWeight;
   options.CommutativityWeight = this->CommutativityWeight;
@@ -716,6 +718,7 @@ void vtkFunctionalMap::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InitialSize: " << this->InitialSize << "\n";
   os << indent << "FinalSize: " << this->FinalSize << "\n";
   os << indent << "ZoomOutStep: " << this->ZoomOutStep << "\n";
+  os << indent << "ZoomOutSamples: " << this->ZoomOutSamples << "\n";
   os << indent << "NumberOfDescriptors: " << this->NumberOfDescriptors << "\n";
   os << indent << "DescriptorWeight: " << this->DescriptorWeight << "\n";
   os << indent << "CommutativityWeight: " << this->CommutativityWeight << "\n";

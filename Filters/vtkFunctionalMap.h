@@ -71,7 +71,8 @@
  *
  * @warning Memory: the two bases (n x m doubles each, internal ones kept with the filter) and
  * n_target x FinalSize doubles for the point map search. Time: the bases' eigensolves, then
- * roughly (FinalSize - InitialSize) nearest-neighbour searches in the spectral embedding.
+ * roughly (FinalSize - InitialSize) / ZoomOutStep nearest-neighbour searches in the spectral
+ * embedding, on at most ZoomOutSamples points of each shape, and one on every point.
  *
  * Example: Examples/Python/functional_map.py. Tests: Filters/Testing/Cxx/TestFunctionalMap.cxx,
  * Testing/Core/TestFunctionalMap.cxx, Testing/ParaView/TestManifoldHarmonicsFunctionalMap.py.in.
@@ -151,6 +152,18 @@ public:
    */
   vtkSetClampMacro(ZoomOutStep, int, 1, VTK_INT_MAX);
   vtkGetMacro(ZoomOutStep, int);
+  ///@}
+
+  ///@{
+  /**
+   * The ZoomOut iterations run on this many points of each shape (farthest-point samples,
+   * landmarks included) when a shape has more; the final point map is on every point. 0: on
+   * every point (slower on large scans: each iteration costs n_target x n_source x k).
+   * Otherwise at least twice the final size (the core refuses less with an error).
+   * Range [0, VTK_INT_MAX]. Default 2000 (spectral::DefaultZoomOutSamples).
+   */
+  vtkSetClampMacro(ZoomOutSamples, int, 0, VTK_INT_MAX);
+  vtkGetMacro(ZoomOutSamples, int);
   ///@}
 
   ///@{
@@ -275,6 +288,7 @@ protected:
   int InitialSize;
   int FinalSize;
   int ZoomOutStep;
+  int ZoomOutSamples;
   int NumberOfDescriptors;
   double DescriptorWeight;
   double CommutativityWeight;

@@ -183,7 +183,8 @@ double MeanError(vtkIdTypeArray* ids, const Sheet& source, const Sheet& target)
 //------------------------------------------------------------------------------
 // The point map of the default settings: every target point matched, mean error within 3% of
 // the diameter (the source's spacing is 2.3% of it; the nearest source point is 0.9% away on
-// average); the same for a map of size 10 without refinement, whose table is 10 x 10.
+// average); the same for a refinement on 150 samples (a different map: the setting reaches the
+// core) and for a map of size 10 without refinement, whose table is 10 x 10.
 bool TestPointMap()
 {
   const Sheet source = Source(), target = Target();
@@ -203,17 +204,38 @@ bool TestPointMap()
       "every target point matched to a source point");
   }
   const double refined = MeanError(ids, source, target);
+  // ZoomOutSamples reaches the core: refining on 150 samples of each shape (at least twice the
+  // final size, 60; both shapes have fewer points than the default 2000, so the default refines
+  // on every point) changes the map.
+  std::vector<vtkIdType> everyPoint(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfTuples());
+  map->SetZoomOutSamples(150);
+  map->Update();
+  ids = vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
+    vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+  if (!Check(ids != nullptr, "a map on 150 samples"))
+  {
+    return false;
+  }
+  const double sampled = MeanError(ids, source, target);
+  ok &= Check(!std::equal(everyPoint.begin(), everyPoint.end(), ids->GetPointer(0)),
+    "ZoomOutSamples reaches the core");
+  map->SetZoomOutSamples(0);
   // Sizes set on the filter reach the core: no refinement at 10 gives a 10 x 10 table.
   map->SetInitialSize(10);
   map->SetFinalSize(10);
   map->Update();
   ids = vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
     vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+  if (!Check(ids != nullptr, "a map of size 10"))
+  {
+    return false;
+  }
   const double initial = MeanError(ids, source, target);
   vtkTable* table = vtkTable::SafeDownCast(map->GetOutputDataObject(1));
-  std::cout << "mean error / diameter: defaults " << refined << ", size 10 " << initial
-            << std::endl;
+  std::cout << "mean error / diameter: defaults " << refined << ", 150 samples " << sampled
+            << ", size 10 " << initial << std::endl;
   ok &= Check(refined < 0.03, "mean error below 3% of the diameter (defaults)");
+  ok &= Check(sampled < 0.03, "mean error below 3% of the diameter (150 samples)");
   ok &= Check(initial < 0.03, "mean error below 3% of the diameter (size 10)");
   ok &= Check(table->GetNumberOfRows() == 10 && table->GetNumberOfColumns() == 10,
     "InitialSize and FinalSize reach the core");
@@ -628,7 +650,7 @@ bool TestPrintSelf()
   map->Print(text);
   bool ok = true;
   for (const char* expected : { "NumberOfHarmonics: 100", "InitialSize: 0", "FinalSize: 0",
-         "ZoomOutStep:", "NumberOfDescriptors:", "DescriptorWeight:", "CommutativityWeight:",
+         "ZoomOutStep:", "ZoomOutSamples: 2000", "NumberOfDescriptors:", "DescriptorWeight:", "CommutativityWeight:",
          "LandmarkWeight:", "OrientationWeight:", "OrientationTerm: Off",
          "SourceLandmarks: 4", "TargetLandmarks: 7", "TransferArrays: On",
          "SmoothArrays: Temperature", "LabelArrays:", "AlignHarmonics: Off" })
