@@ -167,6 +167,14 @@ vtkSmartPointer<vtkFunctionalMap> MapOf(vtkPolyData* source, vtkPolyData* target
 }
 
 //------------------------------------------------------------------------------
+// The CorrespondingPointIds of the filter's output (null if missing or of another type).
+vtkIdTypeArray* PointIds(vtkFunctionalMap* map)
+{
+  return vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
+    vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+}
+
+//------------------------------------------------------------------------------
 // The mean parameter distance of the point map, relative to the diameter.
 double MeanError(vtkIdTypeArray* ids, const Sheet& source, const Sheet& target)
 {
@@ -190,8 +198,7 @@ bool TestPointMap()
   const Sheet source = Source(), target = Target();
   auto map = MapOf(source.Mesh, target.Mesh);
   map->Update();
-  auto ids = vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
-    vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+  vtkIdTypeArray* ids = PointIds(map);
   bool ok = Check(ids && ids->GetNumberOfTuples() == target.Mesh->GetNumberOfPoints(),
     "CorrespondingPointIds: one vtkIdTypeArray value per target point");
   if (!ok)
@@ -210,8 +217,7 @@ bool TestPointMap()
   std::vector<vtkIdType> everyPoint(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfTuples());
   map->SetZoomOutSamples(150);
   map->Update();
-  ids = vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
-    vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+  ids = PointIds(map);
   if (!Check(ids != nullptr, "a map on 150 samples"))
   {
     return false;
@@ -224,8 +230,7 @@ bool TestPointMap()
   map->SetInitialSize(10);
   map->SetFinalSize(10);
   map->Update();
-  ids = vtkIdTypeArray::SafeDownCast(map->GetOutput()->GetPointData()->GetArray(
-    vtkFunctionalMap::CorrespondingPointIdsArrayName()));
+  ids = PointIds(map);
   if (!Check(ids != nullptr, "a map of size 10"))
   {
     return false;
