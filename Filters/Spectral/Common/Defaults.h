@@ -47,6 +47,9 @@ constexpr int DefaultNumberOfMapDescriptors = 50;
 /// The weight of the commutativity with the Laplacians relative to descriptor preservation
 /// (each term divided by its own scale, FunctionalMap.h).
 constexpr double DefaultCommutativityWeight = 0.1;
+/// The weight of the orientation term (FunctionalMapOptions::OrientationTerm) relative to
+/// descriptor preservation.
+constexpr double DefaultOrientationWeight = 1.0;
 /// The weight of the landmark descriptors relative to the other descriptors.
 constexpr double DefaultLandmarkWeight = 1.0;
 } // namespace spectral

@@ -9,6 +9,7 @@
 #include "Filtering/Descriptors.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
@@ -25,6 +26,11 @@ namespace
 /// non-constant one) whose 1 / lambda is the shortest time (see LandmarkKernelTimes).
 constexpr int NumberOfLandmarkKernelTimes = 16;
 constexpr Eigen::Index LandmarkKernelHarmonics = 10;
+/// The orientation term uses every this many-th descriptor (5 of the default 50).
+constexpr Eigen::Index OrientationDescriptorStep = 10;
+/// The largest InitialSize with the orientation term, which solves for the k^2 entries of C
+/// at once (O(k^6): about a second at k = 40 on one core).
+constexpr int MaximumOrientedSize = 60;
 
 /// Query rows and database rows per block of the nearest-row search: a block of distances is
 /// QueryBlock x DatabaseBlock doubles (2 MB) per thread.
@@ -203,12 +209,11 @@ DenseMatrix LandmarkCoefficients(const SpectralShape& shape, const DenseMatrix& 
   return result;
 }
 
-/// The C minimizing ||C A - B||^2 + sum_ij w_ij C_ij^2 with w_ij = weight (l2_i - l1_j)^2 / s,
-/// row by row: (A A^T + diag(w_i.)) c_i = A b_i.
-DenseMatrix SolveRows(const DenseMatrix& A, const DenseMatrix& B, const Vector& lambda1,
-  const Vector& lambda2, double weight)
+/// The weights w_ij = weight (lambda2_i - lambda1_j)^2 / s of the commutativity term, s the sum
+/// of the (lambda2_i - lambda1_j)^2 (k by k).
+DenseMatrix CommutativityPenalty(const Vector& lambda1, const Vector& lambda2, double weight)
 {
-  const Eigen::Index k = A.rows();
+  const Eigen::Index k = lambda1.size();
   DenseMatrix penalty(k, k);
   for (Eigen::Index i = 0; i < k; ++i)
   {
@@ -223,6 +228,14 @@ DenseMatrix SolveRows(const DenseMatrix& A, const DenseMatrix& B, const Vector& 
   {
     penalty *= weight / scale;
   }
+  return penalty;
+}
+
+/// The C minimizing ||C A - B||^2 + sum_ij w_ij C_ij^2 (w = penalty), row by row:
+/// (A A^T + diag(w_i.)) c_i = A b_i.
+DenseMatrix SolveRows(const DenseMatrix& A, const DenseMatrix& B, const DenseMatrix& penalty)
+{
+  const Eigen::Index k = A.rows();
   const DenseMatrix gram = A * A.transpose();
   const DenseMatrix right = B * A.transpose(); // row i is (A b_i)^T
   DenseMatrix C(k, k);
@@ -233,6 +246,93 @@ DenseMatrix SolveRows(const DenseMatrix& A, const DenseMatrix& B, const Vector& 
     C.row(i) = system.ldlt().solve(right.row(i).transpose()).transpose();
   }
   return C;
+}
+
+/// N += s (P kron R): entry (i + k j, i' + k j') += s P(j, j') R(i, i'), the normal matrix of
+/// vec(C) stacked by columns.
+void AddKronecker(DenseMatrix& N, const DenseMatrix& P, const DenseMatrix& R, double s)
+{
+  const Eigen::Index k = R.rows();
+  for (Eigen::Index j = 0; j < k; ++j)
+  {
+    for (Eigen::Index jj = 0; jj < k; ++jj)
+    {
+      N.block(k * j, k * jj, k, k) += (s * P(j, jj)) * R;
+    }
+  }
+}
+
+/**
+ * The C minimizing ||C A - B||^2 + sum_ij w_ij C_ij^2 + sum_g weight_g ||C X_g - Y_g C||^2 over
+ * all k^2 entries at once (the last terms couple the rows): the normal equations of vec(C),
+ * (A A^T kron I + diag(vec w) + sum_g weight_g (X X^T kron I - X kron Y - X^T kron Y^T +
+ * I kron Y^T Y)) vec C = vec(B A^T). O(k^6) to solve.
+ */
+DenseMatrix SolveWhole(const DenseMatrix& A, const DenseMatrix& B, const DenseMatrix& penalty,
+  const std::vector<std::pair<DenseMatrix, DenseMatrix>>& operators, double weight)
+{
+  const Eigen::Index k = A.rows();
+  const DenseMatrix I = DenseMatrix::Identity(k, k);
+  DenseMatrix N = DenseMatrix::Zero(k * k, k * k);
+  AddKronecker(N, A * A.transpose(), I, 1.0);
+  for (const auto& XY : operators)
+  {
+    const DenseMatrix& X = XY.first;
+    const DenseMatrix& Y = XY.second;
+    AddKronecker(N, X * X.transpose(), I, weight);
+    AddKronecker(N, X, Y, -weight);
+    AddKronecker(N, X.transpose(), Y.transpose(), -weight);
+    AddKronecker(N, I, Y.transpose() * Y, weight);
+  }
+  N.diagonal() += Eigen::Map<const Vector>(penalty.data(), k * k);
+  const DenseMatrix right = B * A.transpose();
+  const Vector c = N.ldlt().solve(Eigen::Map<const Vector>(right.data(), k * k));
+  return Eigen::Map<const DenseMatrix>(c.data(), k, k);
+}
+
+/**
+ * The orientation operator of a descriptor g in the first k harmonics (Ren et al. 2018):
+ * Q = Phi^T D O_g Phi with (O_g f) = <grad f x grad g, n>, constant per triangle for the linear
+ * f and g of the mesh and given to its corners with a third of its area each:
+ * Q_ij = sum_t (A_t / 3) (sum_{v in t} phi_i(v)) <grad phi_j x grad g, n>_t. The normal n is
+ * that of the triangle's order of points, so the operator changes sign with the orientation.
+ */
+DenseMatrix OrientationOperator(const SpectralShape& shape, const Vector& g, Eigen::Index k)
+{
+  const Triangles& faces = shape.Faces;
+  const Eigen::Index F = faces.rows();
+  RowMatrix sums(F, k);
+  RowMatrix values(F, k);
+  for (Eigen::Index t = 0; t < F; ++t)
+  {
+    const int v[3] = { faces(t, 0), faces(t, 1), faces(t, 2) };
+    const Eigen::Vector3d p[3] = { shape.Vertices.row(v[0]).transpose(),
+      shape.Vertices.row(v[1]).transpose(), shape.Vertices.row(v[2]).transpose() };
+    const Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double twiceArea = normal.norm();
+    if (!(twiceArea > 0.0))
+    {
+      sums.row(t).setZero();
+      values.row(t).setZero();
+      continue;
+    }
+    const Eigen::Vector3d n = normal / twiceArea;
+    // grad B_c = n x (opposite edge) / 2A for the hat function B_c of corner c.
+    Eigen::Vector3d gradient[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      gradient[c] = n.cross(p[(c + 2) % 3] - p[(c + 1) % 3]) / twiceArea;
+    }
+    const Eigen::Vector3d gradG = g[v[0]] * gradient[0] + g[v[1]] * gradient[1] + g[v[2]] * gradient[2];
+    const Eigen::Vector3d w = gradG.cross(n); // <grad f x grad g, n> = grad f . (grad g x n)
+    const double area = twiceArea / 6.0; // a third of the triangle's area
+    sums.row(t) = area * (shape.Harmonics.row(v[0]).head(k) + shape.Harmonics.row(v[1]).head(k) +
+      shape.Harmonics.row(v[2]).head(k));
+    values.row(t) = gradient[0].dot(w) * shape.Harmonics.row(v[0]).head(k) +
+      gradient[1].dot(w) * shape.Harmonics.row(v[1]).head(k) +
+      gradient[2].dot(w) * shape.Harmonics.row(v[2]).head(k);
+  }
+  return sums.transpose() * values;
 }
 
 /// The resolved sizes (0 for automatic), checked against both bases.
@@ -271,8 +371,18 @@ void CheckOptions(const FunctionalMapOptions& options, const SpectralShape& sour
 {
   if (options.OrientationTerm)
   {
-    throw InvalidInput("the orientation term of functional maps is not yet available: use "
-                       "landmarks to tell a shape from its mirror image");
+    for (const SpectralShape* shape : { &source, &target })
+    {
+      if (shape->Faces.rows() == 0 || shape->Vertices.rows() != shape->Harmonics.rows())
+      {
+        throw InvalidInput("the orientation term needs the points and the triangles of both "
+                           "shapes");
+      }
+      if (shape->Faces.minCoeff() < 0 || shape->Faces.maxCoeff() >= shape->Harmonics.rows())
+      {
+        throw InvalidInput("a triangle of a shape has a point index out of range");
+      }
+    }
   }
   if (options.ZoomOutStep < 1 || options.NumberOfDescriptors < 1 || options.ZoomOutSamples < 0)
   {
@@ -597,6 +707,12 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   std::tie(result.InitialSize, result.FinalSize) =
     ResolveSizes(options, source.Harmonics.cols(), target.Harmonics.cols());
   const Eigen::Index k0 = result.InitialSize;
+  if (options.OrientationTerm && result.InitialSize > MaximumOrientedSize)
+  {
+    throw InvalidInput("with the orientation term the initial size of the map (" +
+      std::to_string(result.InitialSize) + ") must be at most " +
+      std::to_string(MaximumOrientedSize) + ": it solves for the k^2 entries at once");
+  }
   if (options.ZoomOutSamples > 0 && options.ZoomOutSamples < 2 * result.FinalSize)
   {
     throw InvalidInput("ZoomOutSamples (" + std::to_string(options.ZoomOutSamples) +
@@ -651,8 +767,31 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
     Aw.rightCols(ql) = landmarkScale * LandmarkCoefficients(source, W1, points1, k0);
     Bw.rightCols(ql) = landmarkScale * LandmarkCoefficients(target, W2, points2, k0);
   }
-  result.InitialMap = SolveRows(Aw, Bw, source.Eigenvalues.head(k0),
-    target.Eigenvalues.head(k0), options.CommutativityWeight);
+  const DenseMatrix penalty = CommutativityPenalty(
+    source.Eigenvalues.head(k0), target.Eigenvalues.head(k0), options.CommutativityWeight);
+  if (options.OrientationTerm && options.OrientationWeight > 0.0)
+  {
+    // One operator pair per OrientationDescriptorStep-th descriptor, each scaled by the norm of
+    // the source's operator; their weights share OrientationWeight.
+    std::vector<std::pair<DenseMatrix, DenseMatrix>> operators;
+    for (Eigen::Index c = OrientationDescriptorStep / 2; c < F1.cols(); c += OrientationDescriptorStep)
+    {
+      DenseMatrix X = OrientationOperator(source, F1.col(c), k0);
+      DenseMatrix Y = OrientationOperator(target, F2.col(c), k0);
+      const double norm = X.norm();
+      if (norm > 0.0)
+      {
+        operators.emplace_back(X / norm, Y / norm);
+      }
+    }
+    result.InitialMap = SolveWhole(Aw, Bw, penalty, operators,
+      options.DescriptorWeight * options.OrientationWeight /
+        static_cast<double>(std::max<std::size_t>(1, operators.size())));
+  }
+  else
+  {
+    result.InitialMap = SolveRows(Aw, Bw, penalty);
+  }
   const double normB = B.norm();
   result.DescriptorResidual = normB > 0.0 ? (result.InitialMap * A - B).norm() / normB : 0.0;
   result.EstimateSeconds = SecondsSince(start);
