@@ -57,13 +57,16 @@
  * refinement keeps them as fixed pairs; one pair off every symmetry plane decides, two or three
  * are safer) and OrientationTerm (the orientation-preserving term of Ren et al., "Continuous and
  * Orientation-preserving Correspondences via Functional Maps", ACM TOG 37(6), 2018: no user
- * input, but about NumberOfDescriptors more k x k operators to build and a larger least squares,
- * and consistently oriented triangles on both inputs; the core of this version refuses it with
- * an error that says so: use landmarks).
+ * input, but one operator per tenth descriptor to build, O(F k^2) each for F triangles, and the
+ * initial map becomes one dense system of k^2 unknowns, O(k^6): about 0.1 s at k = 30, a few
+ * seconds at the limit InitialSize <= 60 (more is an error); it needs consistently oriented
+ * triangles on both inputs, and keeps the orientation they give: turn the target's triangles
+ * over to ask for the mirror map; the refinement is unchanged).
  *
  * Errors (vtkErrorMacro, both outputs empty): a missing or empty input, an input without
  * triangles or basis arrays, an internal basis that fails (its error becomes this filter's one
- * message, naming the input; its warnings become this filter's), inconsistent basis arrays, sizes larger than a basis, landmark lists
+ * message, naming the input; its warnings become this filter's), inconsistent basis arrays,
+ * sizes larger than a basis, OrientationTerm with InitialSize above 60, landmark lists
  * of different lengths or with ids out of range, an array named in both SmoothArrays and
  * LabelArrays or missing from the source, an integer array in SmoothArrays, distributed runs
  * (several processes: both whole surfaces are needed on one process). An aborted execution
@@ -180,7 +183,8 @@ public:
    * The weights of the terms of the initial estimate: descriptor preservation (default 1, must
    * be above 0), commutativity with the Laplacians (default 0.1,
    * spectral::DefaultCommutativityWeight), landmarks relative to the other descriptors (default 1,
-   * spectral::DefaultLandmarkWeight) and orientation (default 0, with OrientationTerm). Each
+   * spectral::DefaultLandmarkWeight) and orientation (default 1,
+   * spectral::DefaultOrientationWeight, used with OrientationTerm). Each
    * term is divided by its own scale, so the weights are free of units. Range [0, inf).
    */
   vtkSetClampMacro(DescriptorWeight, double, 0.0, VTK_DOUBLE_MAX);
@@ -196,9 +200,8 @@ public:
   ///@{
   /**
    * The orientation-preserving term (Ren et al. 2018) against orientation-reversing (mirror)
-   * maps of symmetric shapes (see the class documentation for its cost). Not available in this
-   * version: on, the execution fails with an error that says so. Default off
-   * (spectral::FunctionalMapOptions).
+   * maps of symmetric shapes (see the class documentation for its cost); needs InitialSize at
+   * most 60. Default off (spectral::FunctionalMapOptions).
    */
   vtkSetMacro(OrientationTerm, bool);
   vtkGetMacro(OrientationTerm, bool);

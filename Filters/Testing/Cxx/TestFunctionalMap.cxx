@@ -248,6 +248,42 @@ bool TestPointMap()
 }
 
 //------------------------------------------------------------------------------
+// OrientationTerm on (both sheets' triangles turn the same way in the parameters): the map keeps
+// the error of the defaults (within 3% of the diameter); with the target's triangles turned over
+// it asks for the mirror map of the L, which is no isometry: the error grows.
+bool TestOrientationTerm()
+{
+  const Sheet source = Source(), target = Target();
+  auto map = MapOf(source.Mesh, target.Mesh);
+  map->OrientationTermOn();
+  map->Update();
+  vtkIdTypeArray* ids = PointIds(map);
+  if (!Check(ids != nullptr, "a map with the orientation term"))
+  {
+    return false;
+  }
+  const double kept = MeanError(ids, source, target);
+  vtkCellArray* polys = target.Mesh->GetPolys();
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->ReverseCellAtId(c);
+  }
+  target.Mesh->Modified();
+  map->Update();
+  ids = PointIds(map);
+  if (!Check(ids != nullptr, "a map with the target's triangles turned over"))
+  {
+    return false;
+  }
+  const double mirrored = MeanError(ids, source, target);
+  std::cout << "mean error / diameter with the orientation term: " << kept
+            << ", target turned over " << mirrored << std::endl;
+  bool ok = Check(kept < 0.03, "the orientation term keeps the map within 3% of the diameter");
+  ok &= Check(mirrored > 2 * kept, "turned-over triangles ask for another orientation");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // Labels (vtkIntArray) go through the point map by default: exact copies of the matched source
 // point's label, and the true label wherever the match is closer to the truth than to a label
 // boundary. The smooth field (vtkDoubleArray) goes through the functional map: close to the
@@ -656,7 +692,7 @@ bool TestPrintSelf()
   bool ok = true;
   for (const char* expected : { "NumberOfHarmonics: 100", "InitialSize: 0", "FinalSize: 0",
          "ZoomOutStep:", "ZoomOutSamples: 2000", "NumberOfDescriptors:", "DescriptorWeight:", "CommutativityWeight:",
-         "LandmarkWeight:", "OrientationWeight:", "OrientationTerm: Off",
+         "LandmarkWeight:", "OrientationWeight: 1", "OrientationTerm: Off",
          "SourceLandmarks: 4", "TargetLandmarks: 7", "TransferArrays: On",
          "SmoothArrays: Temperature", "LabelArrays:", "AlignHarmonics: Off" })
   {
@@ -674,6 +710,7 @@ int TestFunctionalMap(int argc, char* argv[])
     argv,
     {
       { "PointMap", TestPointMap },
+      { "OrientationTerm", TestOrientationTerm },
       { "Transfer", TestTransfer },
       { "NamesAndTypes", TestNamesAndTypes },
       { "GivenBasisAndReuse", TestGivenBasisAndReuse },
