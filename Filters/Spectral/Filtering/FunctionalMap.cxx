@@ -720,6 +720,13 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
       std::to_string(2 * result.FinalSize) + ")");
   }
   const Eigen::Index common = std::min(source.Harmonics.cols(), target.Harmonics.cols());
+  std::vector<int> landmarks1;
+  std::vector<int> landmarks2;
+  for (const auto& pair : options.Landmarks)
+  {
+    landmarks1.push_back(pair.first);
+    landmarks2.push_back(pair.second);
+  }
 
   // Descriptors and the initial map.
   monitor.Begin("Descriptors");
@@ -752,20 +759,13 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   Bw.leftCols(q) = descriptorScale * B;
   if (ql > 0)
   {
-    std::vector<int> points1;
-    std::vector<int> points2;
-    for (const auto& pair : options.Landmarks)
-    {
-      points1.push_back(pair.first);
-      points2.push_back(pair.second);
-    }
     const double landmarkScale =
       std::sqrt(options.DescriptorWeight * options.LandmarkWeight / static_cast<double>(ql));
     const Vector times = LandmarkKernelTimes(spectrum1, spectrum2, k0);
     const DenseMatrix W1 = HeatWeights(source.Eigenvalues, spectrum1, times);
     const DenseMatrix W2 = HeatWeights(target.Eigenvalues, spectrum2, times);
-    Aw.rightCols(ql) = landmarkScale * LandmarkCoefficients(source, W1, points1, k0);
-    Bw.rightCols(ql) = landmarkScale * LandmarkCoefficients(target, W2, points2, k0);
+    Aw.rightCols(ql) = landmarkScale * LandmarkCoefficients(source, W1, landmarks1, k0);
+    Bw.rightCols(ql) = landmarkScale * LandmarkCoefficients(target, W2, landmarks2, k0);
   }
   const DenseMatrix penalty = CommutativityPenalty(
     source.Eigenvalues.head(k0), target.Eigenvalues.head(k0), options.CommutativityWeight);
@@ -808,15 +808,8 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   FunctionalMapOptions partOptions = options;
   if (sampled)
   {
-    std::vector<int> start1;
-    std::vector<int> start2;
-    for (const auto& pair : options.Landmarks)
-    {
-      start1.push_back(pair.first);
-      start2.push_back(pair.second);
-    }
-    const std::vector<int> points1 = FarthestPoints(source, spectrum1, samples, start1);
-    const std::vector<int> points2 = FarthestPoints(target, spectrum2, samples, start2);
+    const std::vector<int> points1 = FarthestPoints(source, spectrum1, samples, landmarks1);
+    const std::vector<int> points2 = FarthestPoints(target, spectrum2, samples, landmarks2);
     part1 = Restricted(source, points1);
     part2 = Restricted(target, points2);
     // The landmarks are among the samples: their indices there.

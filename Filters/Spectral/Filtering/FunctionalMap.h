@@ -41,7 +41,10 @@
  *    Correspondence", ACM TOG 38(6), 2019): from k = InitialSize to FinalSize by ZoomOutStep,
  *    the point map of C (each target point j to the source point whose row of Phi1_k is nearest
  *    to row j of Phi2_k C), then the map of the next size C = Phi2_k'^T D2 Pi Phi1_k'. The last
- *    point map is that of the final C.
+ *    point map is that of the final C. On shapes of more than ZoomOutSamples points the
+ *    iterations run on that many farthest-point samples of each (landmarks included), with
+ *    the least-squares map of the samples (their Gram matrix solved for), and only the final
+ *    point map is on every point (pyFM's subsampling).
  * 5. The orientation term (OrientationTerm; Ren, Poulenard, Ovsjanikov and Guibas,
  *    "Continuous and Orientation-preserving Correspondences via Functional Maps", ACM TOG 37(6),
  *    2018): for every tenth descriptor g (5 of the default 50), the operator
