@@ -16,7 +16,6 @@
 #include "vtkManifoldHarmonicsStages.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOutputWindow.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -151,20 +150,6 @@ void vtkManifoldHarmonicSmoothing::ForwardProgress(vtkObject*, unsigned long, vo
   if (this->GetAbortExecute())
   {
     this->Basis->SetAbortExecute(1);
-  }
-}
-
-//------------------------------------------------------------------------------
-void vtkManifoldHarmonicSmoothing::ForwardWarning(vtkObject*, unsigned long, void* data)
-{
-  // What vtkWarningMacro does with a message: to the observers, or else to the output window.
-  if (this->HasObserver(vtkCommand::WarningEvent))
-  {
-    this->InvokeEvent(vtkCommand::WarningEvent, data);
-  }
-  else if (vtkObject::GetGlobalWarningDisplay())
-  {
-    vtkOutputWindowDisplayWarningText(static_cast<const char*>(data));
   }
 }
 

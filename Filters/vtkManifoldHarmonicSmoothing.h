@@ -219,9 +219,6 @@ private:
   bool UpdateBasis();
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
-  /// The warnings of the internal stages, as this filter's: its observers see them (and the
-  /// output window shows them once, as it would the stage's).
-  void ForwardWarning(vtkObject* caller, unsigned long event, void* data);
 
   // The internal basis, kept between executions so that a new cutoff reuses it.
   vtkSmartPointer<vtkPointSet> Input;    // shallow copy of the input, replaced when it changes

@@ -2,11 +2,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkManifoldHarmonicsAlgorithm.h"
 
+#include "vtkCommand.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsParallel.h"
+#include "vtkObject.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointSet.h"
 #include "vtkTable.h"
 
@@ -110,6 +113,20 @@ spectral::Monitor vtkManifoldHarmonicsAlgorithm::MakeMonitor(double scale)
   monitor.Stage = [this](const char* stage) { this->SetProgressText(stage); };
   monitor.Warning = [this](const std::string& text) { vtkWarningMacro(<< text); };
   return monitor;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicsAlgorithm::ForwardWarning(vtkObject*, unsigned long, void* data)
+{
+  // What vtkWarningMacro does with a message: to the observers, or else to the output window.
+  if (this->HasObserver(vtkCommand::WarningEvent))
+  {
+    this->InvokeEvent(vtkCommand::WarningEvent, data);
+  }
+  else if (vtkObject::GetGlobalWarningDisplay())
+  {
+    vtkOutputWindowDisplayWarningText(static_cast<const char*>(data));
+  }
 }
 
 //------------------------------------------------------------------------------

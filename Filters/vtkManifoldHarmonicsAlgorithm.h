@@ -6,8 +6,9 @@
  *          port, threads, errors, progress and abort.
  *
  * vtkManifoldHarmonicBasis, vtkManifoldHarmonicTransform, vtkSpectralFilter,
- * vtkManifoldHarmonicSmoothing and vtkSpectralDescriptors derive from this class, which holds
- * what they share, each rule once:
+ * vtkManifoldHarmonicSmoothing, vtkSpectralDescriptors and vtkFunctionalMap (whose second input,
+ * the source, it reads itself) derive from this class, which holds what they share, each rule
+ * once:
  *
  * - Output port 0 is a point set of the input's type (vtkPolyData in, vtkPolyData out, and so on
  *   for every vtkPointSet); a filter built with a table port has a vtkTable on port 1 (the
@@ -102,6 +103,14 @@ protected:
    * progress text, its warnings as vtkWarningMacro, and the filter's abort flag.
    */
   spectral::Monitor MakeMonitor(double scale = 1.0);
+
+  /**
+   * An observer of the WarningEvent of an internal filter (the basis of
+   * vtkManifoldHarmonicSmoothing and vtkFunctionalMap): its warnings become this filter's, so
+   * that this filter's observers see them (and the output window shows them once, as it would
+   * the internal filter's).
+   */
+  void ForwardWarning(vtkObject* caller, unsigned long event, void* data);
 
   /// The controller of a distributed run (more than one process), or null.
   static vtkMultiProcessController* GetDistributedController();

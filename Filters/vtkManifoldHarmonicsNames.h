@@ -57,6 +57,15 @@ constexpr const char* HeatKernelTimes = "HeatKernelSignatureTimes";
 constexpr const char* WaveKernelEnergies = "WaveKernelSignatureEnergies";
 constexpr const char* ScaledEigenvalueColumn = "ScaledEigenvalue";
 
+/// vtkFunctionalMap: the point arrays of the target (the source point id of each target point,
+/// the target's harmonics aligned to the source's), the suffix of a transferred array whose
+/// name the target already has, and the prefix of the map table's columns (one per source
+/// harmonic: `SourceHarmonic_<j>`).
+constexpr const char* CorrespondingPointIds = "CorrespondingPointIds";
+constexpr const char* AlignedHarmonics = "AlignedHarmonics";
+constexpr const char* TransferredSuffix = "_Transferred";
+constexpr const char* MapColumnPrefix = "SourceHarmonic_";
+
 /// `name` + `suffix` (an empty name for a null one).
 inline std::string Concatenate(const char* name, const char* suffix)
 {
