@@ -16,6 +16,7 @@
 #include "vtkManifoldHarmonicsArrays.h"
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParameters.h"
+#include "vtkManifoldHarmonicsStages.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -206,7 +207,9 @@ spectral::SpectralShape ShapeOf(vtkPointSet* withBasis, const char* role)
     shape.Harmonics = spectral::FloatBasisView(basis.Floats, n, m).cast<double>();
   }
   shape.Eigenvalues = basis.EigenvalueVector();
-  shape.Mass = basis.MassVector();
+  // The transform's weights: a welded seam point's mass counts once, on the copy that owns it
+  // (the other copies, flagged DUPLICATEPOINT, keep their harmonics and find their own match).
+  shape.Mass = vtkManifoldHarmonicsStages::OwnedMass(basis, withBasis);
   spectral::TriangleMesh mesh = vtkManifoldHarmonicsArrays::ToCoreMesh(withBasis).Mesh;
   shape.Vertices = std::move(mesh.Vertices);
   shape.Faces = std::move(mesh.Faces);

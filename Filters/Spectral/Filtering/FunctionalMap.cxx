@@ -407,10 +407,11 @@ void CheckOptions(const FunctionalMapOptions& options, const SpectralShape& sour
         std::to_string(source.Harmonics.rows()) + " points, the target " +
         std::to_string(target.Harmonics.rows()));
     }
-    if (!(source.Mass[pair.first] > 0.0) || !(target.Mass[pair.second] > 0.0))
+    if (!OnSurface(source, pair.first) || !OnSurface(target, pair.second))
     {
       throw InvalidInput("the landmark (" + std::to_string(pair.first) + ", " +
-        std::to_string(pair.second) + ") is on a point outside the surface (zero mass)");
+        std::to_string(pair.second) + ") is on a point outside the surface (zero mass and "
+        "harmonics)");
     }
   }
 }
@@ -636,11 +637,11 @@ std::vector<int> PointMapFromFunctionalMap(
   {
     throw InvalidInput("the source has no point of positive mass");
   }
-  // Only the target points of positive mass are queried.
+  // Only the target points on the surface are queried.
   std::vector<int> rows;
   for (Eigen::Index j = 0; j < target.Mass.size(); ++j)
   {
-    if (target.Mass[j] > 0.0)
+    if (OnSurface(target, j))
     {
       rows.push_back(static_cast<int>(j));
     }
@@ -659,6 +660,12 @@ std::vector<int> PointMapFromFunctionalMap(
     ids[static_cast<std::size_t>(rows[r])] = nearest[r];
   }
   return ids;
+}
+
+//------------------------------------------------------------------------------
+bool OnSurface(const SpectralShape& shape, Eigen::Index i)
+{
+  return shape.Mass[i] > 0.0 || !shape.Harmonics.row(i).isZero(0.0);
 }
 
 //------------------------------------------------------------------------------

@@ -90,8 +90,10 @@ struct SpectralShape
   RowMatrix Harmonics;
   /// m eigenvalues, ascending (0 for the constant harmonic of each connected component).
   Vector Eigenvalues;
-  /// n lumped masses; points of zero mass (outside the surface) are never matched: they are
-  /// no one's corresponding point and, on the target, get -1.
+  /// n lumped masses, the weights of the integrals. A point of zero mass is a candidate of no
+  /// target point; it is on the surface (OnSurface) when its row of harmonics is not zero: a
+  /// copy of a welded seam point, whose mass counts once, on the copy that owns it, gets its
+  /// own corresponding point. Points outside the surface (zero mass and harmonics) get -1.
   Vector Mass;
   /// n by 3 points (for the orientation term; may be empty otherwise).
   Points Vertices;
@@ -166,7 +168,7 @@ struct FunctionalMapResult
  * \param monitor Progress in [0, 1], stages ("Descriptors", "Refine") and cancellation.
  * \throws InvalidInput for sizes that disagree within a shape, fewer than 2 harmonics, sizes out
  *         of range (InitialSize > FinalSize, FinalSize above m1 or m2, ZoomOutSamples below twice
- *         FinalSize), a landmark out of range or on a point of zero mass, non-finite values,
+ *         FinalSize), a landmark out of range or outside the surface (OnSurface), non-finite values,
  *         negative weights, OrientationTerm without the points and triangles of both shapes or
  *         with InitialSize above 60.
  * \throws Cancelled if the monitor says so.
@@ -176,10 +178,13 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   const FunctionalMapOptions& options,
   const Monitor& monitor = Monitor());
 
+/// Whether point i of `shape` is on its surface: positive mass or a non-zero row of harmonics.
+bool OnSurface(const SpectralShape& shape, Eigen::Index i);
+
 /**
- * The point map of a functional map: for each target point j of non-zero mass, the source
- * point i of non-zero mass whose row of Phi1_k1 is nearest to row j of Phi2_k2 C (Pi Phi1 ~
- * Phi2 C); -1 for target points of zero mass.
+ * The point map of a functional map: for each target point j on the surface (OnSurface), the
+ * source point i of non-zero mass whose row of Phi1_k1 is nearest to row j of Phi2_k2 C
+ * (Pi Phi1 ~ Phi2 C); -1 for target points outside the surface.
  * \param map k2 by k1, k1 <= m1, k2 <= m2.
  * \throws InvalidInput for sizes out of range or a source without a point of non-zero mass.
  */

@@ -80,11 +80,12 @@ struct Sheet
 // rolled onto a cylinder of radius 1.5 (x = R sin(u / R), z = R (1 - cos(u / R)), y = v), then,
 // if `moved`, rotated by 0.7 rad about (1, 2, 2) / 3 and translated. Point data: `Label`
 // (vtkIntArray, LabelAt) and `Field` (vtkDoubleArray, FieldAt).
-Sheet BentL(int cells, bool otherDiagonal, bool moved)
+Sheet BentL(int cells, bool otherDiagonal, bool moved, int seam = -1)
 {
   Sheet sheet;
   const double h = 1.0 / cells;
   std::vector<std::vector<vtkIdType>> index(3 * cells + 1, std::vector<vtkIdType>(2 * cells + 1, -1));
+  std::vector<vtkIdType> seamCopy(2 * cells + 1, -1);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   vtkNew<vtkIntArray> label;
@@ -114,10 +115,15 @@ Sheet BentL(int cells, bool otherDiagonal, bool moved)
       {
         q[d] = p[d] * c + cross[d] * s + axis[d] * dot * (1.0 - c) + (moved ? 0.3 * (d + 1) : 0.0);
       }
-      index[i][j] = points->InsertNextPoint(q);
-      sheet.UV.push_back({ u, v });
-      label->InsertNextValue(LabelAt(u, v));
-      field->InsertNextValue(FieldAt(u, v));
+      // A point of the seam column twice: the cells right of it use the second copy.
+      for (int copy = 0; copy < (i == seam ? 2 : 1); ++copy)
+      {
+        const vtkIdType id = points->InsertNextPoint(q);
+        (copy == 0 ? index[i][j] : seamCopy[j]) = id;
+        sheet.UV.push_back({ u, v });
+        label->InsertNextValue(LabelAt(u, v));
+        field->InsertNextValue(FieldAt(u, v));
+      }
     }
   }
   vtkNew<vtkCellArray> triangles;
@@ -125,8 +131,9 @@ Sheet BentL(int cells, bool otherDiagonal, bool moved)
   {
     for (int j = 0; j < 2 * cells; ++j)
     {
-      const vtkIdType a = index[i][j], b = index[i + 1][j], d = index[i][j + 1],
-                      e = index[i + 1][j + 1];
+      const bool right = i == seam;
+      const vtkIdType a = right ? seamCopy[j] : index[i][j], b = index[i + 1][j],
+                      d = right ? seamCopy[j + 1] : index[i][j + 1], e = index[i + 1][j + 1];
       if (a < 0 || b < 0 || d < 0 || e < 0 || !InL((i + 0.5) * h, (j + 0.5) * h))
       {
         continue;
@@ -244,6 +251,59 @@ bool TestPointMap()
   ok &= Check(initial < 0.03, "mean error below 3% of the diameter (size 10)");
   ok &= Check(table->GetNumberOfRows() == 10 && table->GetNumberOfColumns() == 10,
     "InitialSize and FinalSize reach the core");
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+// Both sheets cut along a seam (each point of a grid column twice, as an OBJ file's texture
+// seam arrives): the basis welds the copies and counts each point's mass once (the copies but
+// one flagged DUPLICATEPOINT); so does the map. Every target point is matched, a copy as the
+// point it copies, and the map and the transfer are those of the uncut sheets: the same point
+// map, the same smooth field to rounding. (With each copy's mass counted, the integrals of the
+// map counted the seam twice; with the copies left out, they had no corresponding point.)
+bool TestWeldedSeams()
+{
+  const Sheet source = Source(), target = Target();
+  const Sheet cutSource = BentL(12, false, false, 18), cutTarget = BentL(9, true, true, 5);
+  auto whole = MapOf(source.Mesh, target.Mesh);
+  whole->Update();
+  auto cut = MapOf(cutSource.Mesh, cutTarget.Mesh);
+  cut->Update();
+  vtkIdTypeArray* wholeIds = PointIds(whole);
+  vtkIdTypeArray* cutIds = PointIds(cut);
+  bool ok = Check(wholeIds && cutIds &&
+      cutIds->GetNumberOfTuples() == cutTarget.Mesh->GetNumberOfPoints() &&
+      cutTarget.Mesh->GetNumberOfPoints() > target.Mesh->GetNumberOfPoints(),
+    "both maps, one id per point of the cut target");
+  if (!ok)
+  {
+    return false;
+  }
+  auto wholeField = vtkDoubleArray::SafeDownCast(
+    whole->GetOutput()->GetPointData()->GetArray("Field_Transferred"));
+  auto cutField =
+    vtkDoubleArray::SafeDownCast(cut->GetOutput()->GetPointData()->GetArray("Field_Transferred"));
+  // Target point j of the cut sheet and its point of the whole sheet: the same (u, v).
+  double fieldDifference = 0.0;
+  vtkIdType samePoint = 0;
+  for (vtkIdType j = 0, w = 0; j < cutIds->GetNumberOfTuples(); ++j)
+  {
+    while (w < target.Mesh->GetNumberOfPoints() && target.UV[w] != cutTarget.UV[j])
+    {
+      ++w;
+    }
+    if (w == target.Mesh->GetNumberOfPoints() || cutIds->GetValue(j) < 0)
+    {
+      return Check(false, "every point of the cut target matched, at a point of the whole one");
+    }
+    samePoint += cutSource.UV[cutIds->GetValue(j)] == source.UV[wholeIds->GetValue(w)] ? 1 : 0;
+    fieldDifference =
+      std::max(fieldDifference, std::abs(cutField->GetValue(j) - wholeField->GetValue(w)));
+  }
+  std::cout << samePoint << " of " << cutIds->GetNumberOfTuples()
+            << " matched as on the whole sheets; field difference " << fieldDifference << std::endl;
+  ok &= Check(samePoint == cutIds->GetNumberOfTuples(), "the point map of the whole sheets");
+  ok &= Check(fieldDifference < 1e-8, "the smooth field of the whole sheets (range 2.5)");
   return ok;
 }
 
@@ -712,6 +772,7 @@ int TestFunctionalMap(int argc, char* argv[])
       { "PointMap", TestPointMap },
       { "OrientationTerm", TestOrientationTerm },
       { "Transfer", TestTransfer },
+      { "WeldedSeams", TestWeldedSeams },
       { "NamesAndTypes", TestNamesAndTypes },
       { "GivenBasisAndReuse", TestGivenBasisAndReuse },
       { "Table", TestTable },
