@@ -18,6 +18,7 @@
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
+#include "vtkManifoldHarmonicsStreaming.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -332,29 +333,13 @@ void AddPieceArrays(vtkPointSet* output,
 }
 
 //------------------------------------------------------------------------------
-// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
-std::string Bytes(std::uint64_t bytes)
-{
-  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4)
-  {
-    value /= 1024.0;
-    ++unit;
-  }
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
-  return text.str();
-}
-
-//------------------------------------------------------------------------------
 // The error message of a computation that does not fit in memory: what is needed, what is
 // available, what to change.
 std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   vtkIdType numPts,
   const spectral::InsufficientMemory& e)
 {
+  using vtkManifoldHarmonicsParameters::Bytes;
   const int m = e.Harmonics;
   const bool floats = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT;
   const bool limited = self->GetMemoryLimit() > 0.0;
@@ -421,10 +406,7 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.UpperFrequency = self->GetFrequencyWindow()[1];
   options.BytesPerValue =
     Enums::To(Enums::BasisPrecision, self->GetBasisPrecision(), "BasisPrecision");
-  // A limit below one byte still limits (0 would mean "ask the system").
-  options.MemoryLimit = self->GetMemoryLimit() > 0.0
-    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
-    : 0;
+  options.MemoryLimit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(self->GetMemoryLimit());
   return options;
 }
 
@@ -576,6 +558,36 @@ void WriteBasis(vtkPointSet* output,
   {
     AddPointGhosts(output, input, WeldedDuplicates(welding));
   }
+}
+
+//------------------------------------------------------------------------------
+// The basis of `solved` (the input's `mesh`, welded by `welding` when not null) streamed into a
+// filter of the input's point coordinates: each solved row's signal is the coordinates of the
+// copy the transform counts (Welding::Counted), and every copy of a welded point re-injects its
+// own, as the in-memory stages do with the ghost flags the basis writes.
+spectral::RowMatrix StreamInto(const spectral::StreamedDesign& design,
+  const spectral::TriangleMesh& mesh,
+  const spectral::TriangleMesh& solved,
+  const vtkManifoldHarmonicsParallel::Welding* welding,
+  spectral::BasisOptions options,
+  const spectral::Monitor& monitor)
+{
+  const Eigen::Index n = mesh.Vertices.rows();
+  const Eigen::Index rows = solved.Vertices.rows();
+  spectral::RowMatrix signals(rows, 3);
+  std::vector<long long> rowOf(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    rowOf[static_cast<std::size_t>(i)] = welding ? welding->Map[static_cast<std::size_t>(i)] : i;
+  }
+  for (Eigen::Index w = 0; w < rows; ++w)
+  {
+    signals.row(w) = mesh.Vertices.row(welding ? welding->Counted[static_cast<std::size_t>(w)] : w);
+  }
+  spectral::StreamedFilter filter(spectral::ConstRowView(signals.data(), rows, 3), design);
+  options.Sink = filter.Sink();
+  spectral::ComputeBasis(solved, options, monitor);
+  return filter.ResultOn(spectral::ConstRowView(mesh.Vertices.data(), n, 3), rowOf);
 }
 
 //------------------------------------------------------------------------------
@@ -814,7 +826,17 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
 }
 
 //------------------------------------------------------------------------------
-int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& solution)
+int vtkManifoldHarmonicBasis::SolveStreamed(vtkPointSet* input, StreamRequest& request)
+{
+  Solution solution;
+  return this->Solve(input, this->WeldSeams, solution, &request);
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
+  bool weld,
+  Solution& solution,
+  StreamRequest* stream)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -852,6 +874,16 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input, bool weld, Solution& sol
              spectral::TriangleMesh welded;
              const bool merged =
                weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
+             if (stream)
+             {
+               stream->Filtered = ::StreamInto(stream->Design,
+                 cells.Mesh,
+                 merged ? welded : cells.Mesh,
+                 merged ? &solution.Welding : nullptr,
+                 options,
+                 monitor);
+               return;
+             }
              solution.Basis.reset(new spectral::BasisResult(
                spectral::ComputeBasis(merged ? welded : cells.Mesh, options, monitor)));
            })

@@ -15,6 +15,7 @@
 #define vtkManifoldHarmonicsEnums_h
 
 #include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicSmoothing.h"
 #include "vtkSpectralDescriptors.h"
 #include "vtkSpectralFilter.h"
 
@@ -68,6 +69,12 @@ constexpr Entry<int> Solver[] = {
   { vtkManifoldHarmonicBasis::SLEPC, vtkManifoldHarmonicBasis::SLEPC, "SLEPc" },
 };
 
+/// vtkManifoldHarmonicSmoothing::Storage (no core enum: the path the filter takes).
+constexpr Entry<int> Storage[] = {
+  { vtkManifoldHarmonicSmoothing::AUTOMATIC, vtkManifoldHarmonicSmoothing::AUTOMATIC, "Automatic" },
+  { vtkManifoldHarmonicSmoothing::IN_MEMORY, vtkManifoldHarmonicSmoothing::IN_MEMORY, "In Memory" },
+  { vtkManifoldHarmonicSmoothing::STREAMED, vtkManifoldHarmonicSmoothing::STREAMED, "Streamed" },
+};
 /// vtkSpectralFilter::FilterKind.
 constexpr Entry<spectral::FilterKind> FilterKind[] = {
   { vtkSpectralFilter::LOW_PASS, spectral::FilterKind::LowPass, "Low Pass" },

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Streaming.h"
 
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -67,18 +68,39 @@ void StreamedFilter::Add(const Vector& values, const DenseMatrix& harmonics, int
 //------------------------------------------------------------------------------
 RowMatrix StreamedFilter::Result() const
 {
+  std::vector<long long> identity(static_cast<std::size_t>(this->Signals.rows()));
+  std::iota(identity.begin(), identity.end(), 0LL);
+  return this->ResultOn(
+    ConstRowView(this->Signals.data(), this->Signals.rows(), this->Signals.cols()), identity);
+}
+
+//------------------------------------------------------------------------------
+RowMatrix StreamedFilter::ResultOn(const ConstRowView& X, const std::vector<long long>& rowOf) const
+{
   if (!this->Begun)
   {
     throw InvalidInput("no basis was streamed into the filter");
   }
-  RowMatrix Y = this->Signals;
+  if (static_cast<std::size_t>(X.rows()) != rowOf.size() || X.cols() != this->Signals.cols())
+  {
+    throw InvalidInput("the signals of a streamed filter's result do not match its points");
+  }
+  // The position of each row of the streamed mesh among the basis rows (-1: none).
+  std::vector<Eigen::Index> position(static_cast<std::size_t>(this->Signals.rows()), -1);
   for (std::size_t r = 0; r < this->Rows.size(); ++r)
   {
-    const Eigen::Index i = static_cast<Eigen::Index>(r);
-    if (this->Mass[i] > 0.0)
+    position[static_cast<std::size_t>(this->Rows[r])] = static_cast<Eigen::Index>(r);
+  }
+  RowMatrix Y = X;
+  for (std::size_t i = 0; i < rowOf.size(); ++i)
+  {
+    const long long row = rowOf[i];
+    const Eigen::Index r =
+      row >= 0 && row < this->Signals.rows() ? position[static_cast<std::size_t>(row)] : -1;
+    if (r >= 0 && this->Mass[r] > 0.0)
     {
-      const Eigen::Index row = this->Rows[r];
-      Y.row(row) = this->HighFrequencyGain * this->Signals.row(row) + this->Sum.row(i);
+      const Eigen::Index point = static_cast<Eigen::Index>(i);
+      Y.row(point) = this->HighFrequencyGain * X.row(point) + this->Sum.row(r);
     }
   }
   return Y;

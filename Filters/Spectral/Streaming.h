@@ -61,6 +61,16 @@ public:
    */
   RowMatrix Result() const;
 
+  /**
+   * The filtered signals of points that each take a row of the streamed mesh: point i takes row
+   * rowOf[i] (-1: none; several points may share a row, e.g. the copies of a welded seam point)
+   * and re-injects its own value, Y_i = hfGain X_i + S_{rowOf[i]} where that row has mass,
+   * Y_i = X_i otherwise. Result() is ResultOn(the signals given, the identity).
+   * \param X rowOf.size() by c signals of the points.
+   * \throws InvalidInput if no basis was streamed, or the sizes disagree.
+   */
+  RowMatrix ResultOn(const ConstRowView& X, const std::vector<long long>& rowOf) const;
+
 private:
   void Begin(const BasisResult& basis);
   void Add(const Vector& values, const DenseMatrix& harmonics, int first);

@@ -33,10 +33,13 @@
  * size of 905 MiB (0.95e9 bytes).
  *
  * A streamed basis (BasisSink, Basis.h) keeps no output basis and runs the solver as for a
- * spectrum alone; its Basis term is instead the blocks in delivery, 2 n min(m, 3 k) 8 (a
- * retired block of at most three bands in the solver's rows and again on the output's rows):
- * EstimateStreamedMemory, independent of m once m > 3 k. A caller that accumulates what it
- * receives adds its own arrays (vtkManifoldHarmonicSmoothing: the signals' sums).
+ * spectrum alone; its Basis term is instead the blocks in delivery, n min(m, 3 k) 8 + n
+ * min(m, StreamedBlockColumns) 8 (a retired block of at most three bands as harmonics, and
+ * the part of it handed to the sink at a time, on the output's rows): EstimateStreamedMemory,
+ * independent of m once m > 3 k, below a double in-memory estimate once m > 3 k +
+ * StreamedBlockColumns / 2 (332 harmonics with the automatic bands of 100). A
+ * caller that accumulates what it receives adds its own arrays (vtkManifoldHarmonicSmoothing:
+ * the signals' sums).
  *
  * Used by vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing; tested by
  * Testing/Core/TestMemory.cxx.
@@ -88,6 +91,9 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   int bytesPerValue,
   bool keepEigenvectors = true,
   bool volume = false);
+
+/// The most harmonics a streamed basis hands its sink at once (BasisSink::Harmonics).
+constexpr int StreamedBlockColumns = 64;
 
 /**
  * Estimate the memory of streaming an n by m basis (BasisSink; see the file documentation):
