@@ -63,12 +63,9 @@ MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
   bool volume)
 {
   MemoryEstimate estimate = EstimateBasisMemory(n, nUsed, m, bandSize, 0, false, volume);
-  const std::uint64_t harmonics = static_cast<std::uint64_t>(std::max(m, 0));
-  const std::uint64_t retired =
-    std::min(harmonics, 3 * static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize)));
-  const std::uint64_t handed =
-    std::min(harmonics, static_cast<std::uint64_t>(StreamedBlockColumns));
-  estimate.Basis = n * (retired + handed) * 8;
+  const std::uint64_t handed = std::min(
+    static_cast<std::uint64_t>(std::max(m, 0)), static_cast<std::uint64_t>(StreamedBlockColumns));
+  estimate.Basis = 2 * n * handed * 8;
   return estimate;
 }
 

@@ -603,7 +603,7 @@ bool ResetPeakMemory()
 // A MemoryLimit that the basis in memory exceeds but the stream fits: 800 harmonics of a
 // 10,000-point sphere. By the estimates of Filters/Spectral/Solver/Memory.h the basis in memory
 // needs about 170 MB (basis and solver vectors 64 MB each, Lanczos workspace 32 MB, factor
-// 10 MB), the stream about 96 MB (three bands of vectors 24 MB, delivery blocks 29 MB, the same
+// 10 MB), the stream about 77 MB (three bands of vectors 24 MB, delivery blocks 10 MB, the same
 // workspace and factor): a limit of 130 MiB lies between. IN_MEMORY is refused with the basis
 // filter's message, AUTOMATIC streams with a warning, the process's peak resident memory above
 // what it held before stays within the limit, and an abort mid-stream leaves the output empty.
