@@ -19,6 +19,7 @@
 #include "vtkManifoldHarmonicsNames.h"
 #include "vtkManifoldHarmonicsParallel.h"
 #include "vtkManifoldHarmonicsParameters.h"
+#include "vtkManifoldHarmonicsStreaming.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -320,6 +321,7 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   vtkIdType numPts,
   const spectral::InsufficientMemory& e)
 {
+  using vtkManifoldHarmonicsParameters::Bytes;
   const int m = e.Harmonics;
   const bool floats = self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT;
   const bool limited = self->GetMemoryLimit() > 0.0;
@@ -389,10 +391,7 @@ spectral::BasisOptions CoreOptions(vtkManifoldHarmonicBasis* self)
   options.UpperFrequency = self->GetFrequencyWindow()[1];
   options.BytesPerValue =
     Enums::To(Enums::BasisPrecision, self->GetBasisPrecision(), "BasisPrecision");
-  // A limit below one byte still limits (0 would mean "ask the system").
-  options.MemoryLimit = self->GetMemoryLimit() > 0.0
-    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(self->GetMemoryLimit() * 1048576.0))
-    : 0;
+  options.MemoryLimit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(self->GetMemoryLimit());
   return options;
 }
 
@@ -679,6 +678,36 @@ spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
 }
 
 //------------------------------------------------------------------------------
+// The basis of `solved` (the input's `mesh`, welded by `welding` when not null) streamed into a
+// filter of the input's point coordinates: each solved row's signal is the coordinates of the
+// copy the transform counts (Welding::Counted), and every copy of a welded point re-injects its
+// own, as the in-memory stages do with the ghost flags the basis writes.
+spectral::RowMatrix StreamInto(const spectral::StreamedDesign& design,
+  const spectral::TriangleMesh& mesh,
+  const spectral::TriangleMesh& solved,
+  const vtkManifoldHarmonicsParallel::Welding* welding,
+  spectral::BasisOptions options,
+  const spectral::Monitor& monitor)
+{
+  const Eigen::Index n = mesh.Vertices.rows();
+  const Eigen::Index rows = solved.Vertices.rows();
+  spectral::RowMatrix signals(rows, 3);
+  std::vector<long long> rowOf(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    rowOf[static_cast<std::size_t>(i)] = welding ? welding->Map[static_cast<std::size_t>(i)] : i;
+  }
+  for (Eigen::Index w = 0; w < rows; ++w)
+  {
+    signals.row(w) = mesh.Vertices.row(welding ? welding->Counted[static_cast<std::size_t>(w)] : w);
+  }
+  spectral::StreamedFilter filter(spectral::ConstRowView(signals.data(), rows, 3), design);
+  options.Sink = filter.Sink();
+  spectral::ComputeBasis(solved, options, monitor);
+  return filter.ResultOn(spectral::ConstRowView(mesh.Vertices.data(), n, 3), rowOf);
+}
+
+//------------------------------------------------------------------------------
 // The harmonics and lumped mass of the core's basis as rows of every point of a mesh of
 // `numPts` points (zero on the points no cell uses), for the scatter of a distributed run.
 void FullRows(const spectral::BasisResult& basis,
@@ -941,10 +970,18 @@ int vtkManifoldHarmonicBasis::ComputeBasis(vtkPointSet* input, vtkPointSet* outp
 }
 
 //------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::SolveStreamed(vtkPointSet* input, StreamRequest& request)
+{
+  Solution solution;
+  return this->Solve(input, this->WeldSeams, solution, false, &request);
+}
+
+//------------------------------------------------------------------------------
 int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
   bool weld,
   Solution& solution,
-  bool allowFile)
+  bool allowFile,
+  StreamRequest* stream)
 {
   vtkDebugMacro(<< "Computing " << this->NumberOfHarmonics << " harmonics, mass matrix "
                 << this->MassMatrix << ", Laplacian " << this->Laplacian << ", band size "
@@ -974,7 +1011,11 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
   this->SolvedPoints = numPts;
   const spectral::Monitor monitor = this->MakeMonitor(0.95);
   spectral::BasisOptions options = ::CoreOptions(this);
-  if (!allowFile)
+  if (stream)
+  {
+    // Streamed into the smoothing's filter: no basis is kept, in memory or in a file.
+  }
+  else if (!allowFile)
   {
     this->StorageUsed = IN_MEMORY;
     this->StorageReason = "in memory: process 0 of a distributed run scatters it";
@@ -1004,6 +1045,16 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
              spectral::TriangleMesh welded;
              const bool merged =
                weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
+             if (stream)
+             {
+               stream->Filtered = ::StreamInto(stream->Design,
+                 cells.Mesh,
+                 merged ? welded : cells.Mesh,
+                 merged ? &solution.Welding : nullptr,
+                 options,
+                 monitor);
+               return;
+             }
              if (solution.File.Reuse)
              {
                this->BasisReused = true;

@@ -607,13 +607,24 @@ protected:
 private:
   /// The core's basis of a mesh and the welding of its points before the solve.
   struct Solution;
+  /// vtkManifoldHarmonicSmoothing's STREAMED storage (vtkManifoldHarmonicsStreaming.h).
+  friend class vtkManifoldHarmonicSmoothing;
+  struct StreamRequest;
+  /// The basis of `input` with this filter's settings streamed into `request`'s filter
+  /// instead of written (serial, built-in solver). \return 0 after an error or an abort.
+  int SolveStreamed(vtkPointSet* input, StreamRequest& request);
   /**
    * Converts and checks the cells of `input`, welds them when `weld` is true and solves:
    * 0 after an error (reported), 1 otherwise; `solution` holds a basis unless the input has no
    * cells to solve on (warned). `allowFile`: whether the basis may be kept in a file
    * (Storage; not on process 0 of a distributed run, which scatters it from memory).
+   * `stream`: the basis streams into the smoothing's filter instead (SolveStreamed; no storage).
    */
-  int Solve(vtkPointSet* input, bool weld, Solution& solution, bool allowFile);
+  int Solve(vtkPointSet* input,
+    bool weld,
+    Solution& solution,
+    bool allowFile,
+    StreamRequest* stream = nullptr);
 
   /// The points of the mesh being solved, for the message of InsufficientMemory.
   vtkIdType SolvedPoints = 0;

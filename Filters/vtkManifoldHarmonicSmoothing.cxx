@@ -4,6 +4,7 @@
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -23,9 +24,13 @@
 
 #include "Spectral/Common/Defaults.h"
 #include "Spectral/Common/Eigenvalues.h"
+#include "Spectral/Solver/Memory.h"
+#include "vtkManifoldHarmonicsStreaming.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 vtkStandardNewMacro(vtkManifoldHarmonicSmoothing);
 
@@ -92,23 +97,66 @@ Transformed TransformPoints(vtkPointSet* withBasis,
 
 //------------------------------------------------------------------------------
 // The low pass at `fraction` of the highest computed frequency (the spectral filter's defaults
-// otherwise), with re-injection: the new coordinates of the points of `withBasis`.
-spectral::RowMatrix LowPass(vtkManifoldHarmonicSmoothing* self,
-  const Transformed& transformed,
-  vtkPointSet* withBasis,
-  double fraction)
+// otherwise) for the eigenvalues `lambda`: its gains, and its re-injection gain in
+// `highFrequencyGain` (after the cutoff warnings, `self`'s).
+spectral::Vector LowPassGains(vtkManifoldHarmonicSmoothing* self,
+  double fraction,
+  const spectral::Vector& lambda,
+  double nyquist,
+  double& highFrequencyGain)
 {
   spectral::FilterParameters given;
   given.Kind = spectral::FilterKind::LowPass;
   given.Cutoff = fraction;
   given.UpperCutoff = spectral::DefaultUpperCutoffFraction;
   const vtkManifoldHarmonicsStages::Design design = vtkManifoldHarmonicsStages::DesignFilter(
-    given, vtkSpectralFilter::FRACTION_OF_HIGHEST, transformed.Lambda, transformed.Nyquist);
-  const double highFrequencyGain =
-    vtkManifoldHarmonicsStages::ReinjectionGain(self, design, transformed.Nyquist, true);
+    given, vtkSpectralFilter::FRACTION_OF_HIGHEST, lambda, nyquist);
+  highFrequencyGain = vtkManifoldHarmonicsStages::ReinjectionGain(self, design, nyquist, true);
+  return design.Gains;
+}
+
+//------------------------------------------------------------------------------
+// The error of a basis whose harmonics are all constant.
+std::string NothingToSmooth(int m)
+{
+  return "The " + std::to_string(m) +
+    " harmonic(s) are all constant (one per connected component of the surface, frequency 0): "
+    "there is nothing to smooth. Raise NumberOfHarmonics.";
+}
+
+//------------------------------------------------------------------------------
+// The input with the smoothed point coordinates, in the input's precision.
+void SetSmoothedPoints(vtkPointSet* input, vtkPointSet* output, const spectral::RowMatrix& smoothed)
+{
+  output->ShallowCopy(input);
+  vtkNew<vtkPoints> points;
+  points->SetData(vtkManifoldHarmonicsArrays::NewArrayLike(
+    input->GetPoints()->GetData(), smoothed, input->GetPoints()->GetData()->GetName()));
+  output->SetPoints(points);
+}
+
+//------------------------------------------------------------------------------
+// The memory of the streamed low pass beside the core's stream (spectral::StreamedFilter): the
+// coordinates, their weighted copy, the sum, the result and the output points, in doubles.
+std::uint64_t StreamedFilterBytes(std::uint64_t n)
+{
+  return 5 * n * 3 * 8;
+}
+
+//------------------------------------------------------------------------------
+// The low pass at `fraction` of the highest computed frequency, with re-injection: the new
+// coordinates of the points of `withBasis`.
+spectral::RowMatrix LowPass(vtkManifoldHarmonicSmoothing* self,
+  const Transformed& transformed,
+  vtkPointSet* withBasis,
+  double fraction)
+{
+  double highFrequencyGain = 0.0;
+  const spectral::Vector gains =
+    LowPassGains(self, fraction, transformed.Lambda, transformed.Nyquist, highFrequencyGain);
   const vtkManifoldHarmonicsArrays::Signal points(withBasis->GetPoints()->GetData());
   return transformed.Basis.FilterSignal(transformed.Basis.MassVector(),
-    design.Gains,
+    gains,
     spectral::ConstRowView(transformed.Coefficients.data(),
       transformed.Coefficients.rows(),
       transformed.Coefficients.cols()),
@@ -129,6 +177,9 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
   , SlepcPartitions(1)
   , WeldSeams(true)
   , SeamTolerance(vtkManifoldHarmonicsParallel::SeamTolerance)
+  , MemoryLimit(0.0)
+  , Storage(AUTOMATIC)
+  , ChosenStorage(AUTOMATIC)
   , Basis(vtkSmartPointer<vtkManifoldHarmonicBasis>::New())
   , MeshFigures(new vtkManifoldHarmonicsArrays::MeshFiguresCache)
 {
@@ -138,6 +189,8 @@ vtkManifoldHarmonicSmoothing::vtkManifoldHarmonicSmoothing()
     vtkCommand::ProgressEvent, this, &vtkManifoldHarmonicSmoothing::ForwardProgress);
   this->Basis->AddObserver(
     vtkCommand::WarningEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
+  this->Basis->AddObserver(
+    vtkCommand::ErrorEvent, this, &vtkManifoldHarmonicSmoothing::ForwardWarning);
 }
 
 //------------------------------------------------------------------------------
@@ -172,6 +225,16 @@ int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
     output->ShallowCopy(input);
     return 1;
   }
+  const int storage = this->ChooseStorage(input);
+  if (storage < 0)
+  {
+    return 0;
+  }
+  this->ChosenStorage = storage;
+  if (storage == STREAMED)
+  {
+    return this->ExecuteStreamed(input, output);
+  }
   this->UpdateBasisInput(input);
   if (!this->UpdateBasis())
   {
@@ -197,17 +260,135 @@ int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
   }
   if (OnlyConstantHarmonics(transformed.Lambda, transformed.Nyquist))
   {
-    vtkErrorMacro(<< "The " << this->NumberOfHarmonics
-                  << " harmonic(s) are all constant (one per connected component of the surface, "
-                     "frequency 0): there is nothing to smooth. Raise NumberOfHarmonics.");
+    vtkErrorMacro(<< NothingToSmooth(this->NumberOfHarmonics));
     return 0;
   }
-  const spectral::RowMatrix smoothed = LowPass(this, transformed, withBasis, this->CutoffFraction);
-  output->ShallowCopy(input);
-  vtkNew<vtkPoints> points;
-  points->SetData(vtkManifoldHarmonicsArrays::NewArrayLike(
-    input->GetPoints()->GetData(), smoothed, input->GetPoints()->GetData()->GetName()));
-  output->SetPoints(points);
+  SetSmoothedPoints(input, output, LowPass(this, transformed, withBasis, this->CutoffFraction));
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
+{
+  using vtkManifoldHarmonicsParameters::Bytes;
+  const bool serial =
+    !GetDistributedController() && this->Solver == vtkManifoldHarmonicBasis::BUILT_IN;
+  if (!serial)
+  {
+    if (this->Storage == STREAMED)
+    {
+      vtkErrorMacro(<< "Storage Streamed runs serially with the Built-in solver only: choose "
+                       "Automatic or In Memory (the basis is then kept in memory), or run "
+                       "serially with the Built-in solver.");
+      return -1;
+    }
+    return IN_MEMORY;
+  }
+  // The estimates of the basis filter's check (Solver/Memory.h) on every input point.
+  const std::uint64_t n = static_cast<std::uint64_t>(input->GetNumberOfPoints());
+  const int m = this->NumberOfHarmonics;
+  const bool volume = !vtkPolyData::SafeDownCast(input);
+  const std::uint64_t limit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(this->MemoryLimit);
+  const std::uint64_t available = limit > 0 ? limit : spectral::AvailableMemory();
+  const char* from = limit > 0 ? "MemoryLimit" : "reported by the system";
+  const std::uint64_t inMemory = spectral::EstimateBasisMemory(n,
+    n,
+    m,
+    0,
+    vtkManifoldHarmonicsEnums::To(
+      vtkManifoldHarmonicsEnums::BasisPrecision, this->BasisPrecision, "BasisPrecision"),
+    true,
+    volume)
+                                   .Total();
+  const std::uint64_t streamed =
+    spectral::EstimateStreamedMemory(n, n, m, 0, volume).Total() + StreamedFilterBytes(n);
+  if (this->Storage == IN_MEMORY && available != 0 && inMemory > available)
+  {
+    vtkErrorMacro(<< "Not enough memory for the basis of " << m << " harmonics on " << n
+                  << " points in memory: about " << Bytes(inMemory) << " needed, "
+                  << Bytes(available) << " available (" << from
+                  << "). Set Storage to Automatic or Streamed (about " << Bytes(streamed)
+                  << ", whatever the number of harmonics), raise MemoryLimit, compute fewer "
+                     "harmonics or set BasisPrecision to Float.");
+    return -1;
+  }
+  if (this->Storage == IN_MEMORY ||
+    (this->Storage == AUTOMATIC && (available == 0 || inMemory <= available)))
+  {
+    return IN_MEMORY;
+  }
+  if (available != 0 && streamed > available)
+  {
+    vtkErrorMacro(<< "Not enough memory to smooth " << n << " points even with the basis "
+                  << "streamed: about " << Bytes(streamed) << " needed (the sparse factor, the "
+                  << "Lanczos workspace and three bands of vectors, whatever the number of "
+                  << "harmonics), " << Bytes(available) << " available (" << from
+                  << "). Raise MemoryLimit to at least " << (streamed >> 20) + 1
+                  << " MiB, free memory, or simplify the mesh.");
+    return -1;
+  }
+  if (this->Storage == AUTOMATIC)
+  {
+    vtkWarningMacro(<< "The basis of " << m << " harmonics on " << n << " points needs about "
+                    << Bytes(inMemory) << " in memory, more than the " << Bytes(available)
+                    << " available (" << from
+                    << "): it is streamed instead (Storage Automatic), in about " << Bytes(streamed)
+                    << ", and every execution, a new CutoffFraction "
+                    << "included, solves again. Raise MemoryLimit to keep it in memory, or set "
+                    << "Storage to Streamed.");
+  }
+  return STREAMED;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicSmoothing::ExecuteStreamed(vtkPointSet* input, vtkPointSet* output)
+{
+  // No basis to keep: let go of one kept by an in-memory execution (the next one recomputes).
+  // (Read without an update: the basis may never have had an input.)
+  if (vtkDataObject* kept = vtkDataObject::GetData(this->Basis->GetOutputInformation(0)))
+  {
+    kept->Initialize();
+  }
+  this->Basis->Modified();
+  // The core's limit leaves room for the filter's own arrays (StreamedFilterBytes).
+  const std::uint64_t limit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(this->MemoryLimit);
+  const std::uint64_t available = limit > 0 ? limit : spectral::AvailableMemory();
+  const std::uint64_t arrays =
+    StreamedFilterBytes(static_cast<std::uint64_t>(input->GetNumberOfPoints()));
+  this->ConfigureBasis(
+    available > arrays ? static_cast<double>(available - arrays) / 1048576.0 : 0.0);
+  this->SetProgressText("Basis");
+  vtkManifoldHarmonicsArrays::MeshFiguresCache figures;
+  const double nyquist =
+    vtkManifoldHarmonicsStages::NyquistFrequency(nullptr, figures.Of(input).EdgeSums);
+  vtkManifoldHarmonicBasis::StreamRequest request;
+  const double fraction = this->CutoffFraction;
+  const int m = this->NumberOfHarmonics;
+  request.Design = [this, fraction, nyquist, m](const spectral::Vector& lambda, double& hfGain)
+  {
+    if (OnlyConstantHarmonics(lambda, nyquist))
+    {
+      throw spectral::InvalidInput(NothingToSmooth(m));
+    }
+    return LowPassGains(this, fraction, lambda, nyquist, hfGain);
+  };
+  const int solved = this->Basis->SolveStreamed(input, request);
+  if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
+  {
+    return 1; // aborted: the output stays empty
+  }
+  if (!solved)
+  {
+    vtkErrorMacro(<< "Manifold harmonic smoothing failed (see the errors above).");
+    return 0;
+  }
+  if (request.Filtered.rows() != input->GetNumberOfPoints())
+  {
+    output->ShallowCopy(input); // no cells to solve on (the basis warned)
+    return 1;
+  }
+  SetSmoothedPoints(input, output, request.Filtered);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -235,6 +416,21 @@ void vtkManifoldHarmonicSmoothing::UpdateBasisInput(vtkPointSet* input)
 bool vtkManifoldHarmonicSmoothing::UpdateBasis()
 {
   this->SetProgressText("Basis");
+  this->ConfigureBasis(this->MemoryLimit);
+  this->Basis->Update();
+  if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
+  {
+    // The aborted basis is incomplete: the next execution computes it afresh.
+    this->Basis->Modified();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkManifoldHarmonicSmoothing::ConfigureBasis(double memoryLimit)
+{
+  this->Basis->SetMemoryLimit(memoryLimit);
   this->Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   this->Basis->SetBasisPrecision(this->BasisPrecision);
   this->Basis->SetNumberOfThreads(this->NumberOfThreads);
@@ -245,16 +441,11 @@ bool vtkManifoldHarmonicSmoothing::UpdateBasis()
   this->Basis->SetSlepcOptions(this->SlepcOptions.c_str());
   this->Basis->SetWeldSeams(this->WeldSeams);
   this->Basis->SetSeamTolerance(this->SeamTolerance);
+  // The smoothing's own Storage decided between memory and streaming: its cached basis is in
+  // memory, never in a file of the basis filter's choosing.
+  this->Basis->SetStorageToInMemory();
   // The pipeline does not clear AbortExecute after an abort: the basis follows this filter's flag.
   this->Basis->SetAbortExecute(this->GetAbortExecute());
-  this->Basis->Update();
-  if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
-  {
-    // The aborted basis is incomplete: the next execution computes it afresh.
-    this->Basis->Modified();
-    return false;
-  }
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -286,4 +477,8 @@ void vtkManifoldHarmonicSmoothing::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";
   os << indent << "WeldSeams: " << (this->WeldSeams ? "On" : "Off") << "\n";
   os << indent << "SeamTolerance: " << this->SeamTolerance << " of the bounding box diagonal\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB"
+     << (this->MemoryLimit > 0.0 ? "\n" : " (the memory the system reports available)\n");
+  os << indent << "Storage: " << Enums::Name(Enums::SmoothingStorage, this->Storage) << "\n";
+  os << indent << "ChosenStorage: " << Enums::Name(Enums::SmoothingStorage, this->ChosenStorage) << "\n";
 }

@@ -46,13 +46,34 @@
  *   seam rule of the basis (vtkManifoldHarmonicBasis::SetWeldSeams): coincident points are one
  *   point and all their copies move alike, so seams stay closed.
  *
- * The filter keeps its internal basis between executions: when only CutoffFraction changes (a
- * slider in ParaView), it re-runs the cheap filter stage alone. A new input, NumberOfHarmonics
- * or BasisPrecision recomputes the basis. Progress covers the eigensolve, and an abort stops it
- * and leaves the output empty.
+ * - MemoryLimit (default 0: the memory the system reports available) and Storage (default
+ *   AUTOMATIC): where the basis lives. IN_MEMORY keeps the internal basis (n * m values) between
+ *   executions; STREAMED never holds it: the eigensolver hands each verified band of harmonics
+ *   to the transform and filter stages, which add its contribution and let it go
+ *   (spectral::StreamedFilter, Filters/Spectral/Streaming.h), so memory is the mesh, the sparse
+ *   factor and a few bands' vectors, whatever m (spectral::EstimateStreamedMemory). AUTOMATIC
+ *   keeps the basis in memory when its estimate (spectral::EstimateBasisMemory, the basis
+ *   filter's check) fits in MemoryLimit (or the available memory), and streams otherwise, with
+ *   a warning saying so and why; GetChosenStorage tells which ran. Only what cannot run at all is
+ *   refused: STREAMED (or AUTOMATIC) when even the streamed estimate does not fit (the error
+ *   names the memory that would let it run), IN_MEMORY when the basis does not fit (the basis
+ *   filter's error). STREAMED runs serially with the Built-in solver: in a distributed run or
+ *   with the SLEPc solver it is refused, and AUTOMATIC keeps the basis in memory (the basis
+ *   filter's parallel paths, and their memory checks).
  *
- * @warning The cost is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
- * BasisPrecision FLOAT) and an eigensolve. The basis stays in memory with the filter.
+ * The filter keeps its internal basis between executions (IN_MEMORY): when only CutoffFraction
+ * changes (a slider in ParaView), it re-runs the cheap filter stage alone. A new input,
+ * NumberOfHarmonics or BasisPrecision recomputes the basis. STREAMED has no basis to keep: every
+ * execution, a new CutoffFraction included, solves again (twice the eigensolve of the basis: the
+ * spectrum first, since the cutoff is relative to the highest frequency, then the harmonics);
+ * for interactive filtering of a basis larger than memory, compute it once with
+ * vtkManifoldHarmonicBasis and filter it with vtkManifoldHarmonicTransform and
+ * vtkSpectralFilter. The streamed result equals the in-memory one to round-off
+ * (TestManifoldHarmonicSmoothing.StreamedSameAsInMemory). Progress covers the eigensolve, and an
+ * abort stops it and leaves the output empty.
+ *
+ * @warning The cost of IN_MEMORY is that of vtkManifoldHarmonicBasis: n * m doubles (floats with
+ * BasisPrecision FLOAT) and an eigensolve, and the basis stays in memory with the filter.
  *
  * Test: Filters/Testing/Cxx/TestManifoldHarmonicSmoothing.cxx.
  *
@@ -193,6 +214,41 @@ public:
   vtkGetMacro(SeamTolerance, double);
   ///@}
 
+  ///@{
+  /**
+   * The memory the basis may take, in MiB: see vtkManifoldHarmonicBasis::SetMemoryLimit, whose
+   * estimate and message it uses (the one home of its meaning); here it also decides the
+   * AUTOMATIC Storage. 0 means the memory the system reports available. Range [0,
+   * VTK_DOUBLE_MAX]. Default is 0.
+   */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  /// Where the basis lives (see the class documentation).
+  enum StorageType
+  {
+    AUTOMATIC = 0,
+    IN_MEMORY = 1,
+    STREAMED = 2
+  };
+
+  ///@{
+  /**
+   * Where the basis lives: AUTOMATIC (in memory when it fits in MemoryLimit, else streamed),
+   * IN_MEMORY (kept between executions) or STREAMED (never held; every execution solves again).
+   * See the class documentation. Default is AUTOMATIC.
+   */
+  vtkSetClampMacro(Storage, int, AUTOMATIC, STREAMED);
+  vtkGetMacro(Storage, int);
+  void SetStorageToAutomatic() { this->SetStorage(AUTOMATIC); }
+  void SetStorageToInMemory() { this->SetStorage(IN_MEMORY); }
+  void SetStorageToStreamed() { this->SetStorage(STREAMED); }
+  ///@}
+
+  /// The storage the last execution used: IN_MEMORY or STREAMED (AUTOMATIC before any).
+  vtkGetMacro(ChosenStorage, int);
+
 protected:
   vtkManifoldHarmonicSmoothing();
   ~vtkManifoldHarmonicSmoothing() override;
@@ -211,12 +267,22 @@ protected:
   std::string SlepcOptions;
   bool WeldSeams;
   double SeamTolerance;
+  double MemoryLimit;
+  int Storage;
+  int ChosenStorage;
 
 private:
   /// The internal basis's input becomes a shallow copy of `input` when the input changed.
   void UpdateBasisInput(vtkPointSet* input);
   /// The internal basis with this filter's settings, updated. \return false after an abort.
   bool UpdateBasis();
+  /// The internal basis's settings: this filter's (`memoryLimit` in MiB).
+  void ConfigureBasis(double memoryLimit);
+  /// IN_MEMORY or STREAMED for this input (a warning when AUTOMATIC streams); -1 after an
+  /// error (reported): what cannot run at all.
+  int ChooseStorage(vtkPointSet* input);
+  /// The STREAMED execution: the low pass of the points while the basis streams.
+  int ExecuteStreamed(vtkPointSet* input, vtkPointSet* output);
   /// The basis's progress as 0 to 0.9 of this filter's; passes an abort on to the basis.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
 

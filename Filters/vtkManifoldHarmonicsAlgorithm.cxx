@@ -116,12 +116,17 @@ spectral::Monitor vtkManifoldHarmonicsAlgorithm::MakeMonitor(double scale)
 }
 
 //------------------------------------------------------------------------------
-void vtkManifoldHarmonicsAlgorithm::ForwardWarning(vtkObject*, unsigned long, void* data)
+void vtkManifoldHarmonicsAlgorithm::ForwardWarning(vtkObject*, unsigned long event, void* data)
 {
-  // What vtkWarningMacro does with a message: to the observers, or else to the output window.
-  if (this->HasObserver(vtkCommand::WarningEvent))
+  // What vtkWarningMacro (vtkErrorMacro) does with a message: to the observers, or else to the
+  // output window.
+  if (this->HasObserver(event))
   {
-    this->InvokeEvent(vtkCommand::WarningEvent, data);
+    this->InvokeEvent(event, data);
+  }
+  else if (event == vtkCommand::ErrorEvent)
+  {
+    vtkOutputWindowDisplayErrorText(static_cast<const char*>(data));
   }
   else if (vtkObject::GetGlobalWarningDisplay())
   {

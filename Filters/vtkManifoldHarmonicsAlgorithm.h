@@ -105,10 +105,10 @@ protected:
   spectral::Monitor MakeMonitor(double scale = 1.0);
 
   /**
-   * An observer of the WarningEvent of an internal filter (the basis of
-   * vtkManifoldHarmonicSmoothing and vtkFunctionalMap): its warnings become this filter's, so
-   * that this filter's observers see them (and the output window shows them once, as it would
-   * the internal filter's).
+   * An observer of the WarningEvent (or ErrorEvent) of an internal filter (the basis of
+   * vtkManifoldHarmonicSmoothing and vtkFunctionalMap): its warnings (errors) become this
+   * filter's, so that this filter's observers see them (and the output window shows them once,
+   * as it would the internal filter's).
    */
   void ForwardWarning(vtkObject* caller, unsigned long event, void* data);
 

@@ -15,6 +15,7 @@
 #define vtkManifoldHarmonicsEnums_h
 
 #include "vtkManifoldHarmonicBasis.h"
+#include "vtkManifoldHarmonicSmoothing.h"
 #include "vtkSpectralDescriptors.h"
 #include "vtkSpectralFilter.h"
 
@@ -76,6 +77,14 @@ constexpr Entry<int> Solver[] = {
   { vtkManifoldHarmonicBasis::SLEPC, vtkManifoldHarmonicBasis::SLEPC, "SLEPc" },
 };
 
+/// vtkManifoldHarmonicSmoothing::Storage (no core enum: the path the filter takes). AUTOMATIC and
+/// IN_MEMORY mean what they mean for vtkManifoldHarmonicBasis::Storage; the smoothing streams where
+/// the basis filter would use a file.
+constexpr Entry<int> SmoothingStorage[] = {
+  { vtkManifoldHarmonicSmoothing::AUTOMATIC, vtkManifoldHarmonicSmoothing::AUTOMATIC, "Automatic" },
+  { vtkManifoldHarmonicSmoothing::IN_MEMORY, vtkManifoldHarmonicSmoothing::IN_MEMORY, "In Memory" },
+  { vtkManifoldHarmonicSmoothing::STREAMED, vtkManifoldHarmonicSmoothing::STREAMED, "Streamed" },
+};
 /// vtkSpectralFilter::FilterKind.
 constexpr Entry<spectral::FilterKind> FilterKind[] = {
   { vtkSpectralFilter::LOW_PASS, spectral::FilterKind::LowPass, "Low Pass" },

@@ -6,13 +6,20 @@
  *
  * NumberOfHarmonics is a parameter of vtkManifoldHarmonicBasis and of
  * vtkManifoldHarmonicSmoothing, which refuse a value below 1 with the same error. (Its default
- * is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS.) Not installed and not wrapped.
+ * is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS.) MemoryLimit is a parameter of both
+ * too, in MiB (MemoryLimitBytes). Not installed and not wrapped.
  */
 #ifndef vtkManifoldHarmonicsParameters_h
 #define vtkManifoldHarmonicsParameters_h
 
 #include "vtkObject.h"
 #include "vtkSetGet.h"
+
+#include <algorithm> // For std::max
+#include <cstdint>   // For std::uint64_t
+#include <iomanip>   // For std::setprecision
+#include <sstream>   // For Bytes
+#include <string>    // For Bytes
 
 namespace vtkManifoldHarmonicsParameters
 {
@@ -31,6 +38,32 @@ inline bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
     return false;
   }
   return true;
+}
+
+/// MemoryLimit (MiB, vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing) in bytes for the
+/// core (spectral::BasisOptions::MemoryLimit): 0 (ask the system) stays 0, a limit below one
+/// byte still limits.
+inline std::uint64_t MemoryLimitBytes(double mebibytes)
+{
+  return mebibytes > 0.0
+    ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(mebibytes * 1048576.0))
+    : 0;
+}
+
+/// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
+inline std::string Bytes(std::uint64_t bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4)
+  {
+    value /= 1024.0;
+    ++unit;
+  }
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
+  return text.str();
 }
 } // namespace vtkManifoldHarmonicsParameters
 

@@ -406,7 +406,8 @@ void Stream::Deliver(int component,
     }
     const int start = index[static_cast<std::size_t>(local)];
     int run = 1;
-    while (k + run < count && local + run < static_cast<int>(index.size()) &&
+    while (run < StreamedBlockColumns && k + run < count &&
+      local + run < static_cast<int>(index.size()) &&
       index[static_cast<std::size_t>(local + run)] == start + run)
     {
       ++run;

@@ -79,8 +79,9 @@ struct BasisSink
    */
   std::function<void(const BasisResult& basis)> Begin;
   /**
-   * Receives verified harmonics: `harmonics` (#InputPointIds by values.size()) holds the
-   * harmonics of indices first, first + 1, ... of the basis, `values` their eigenvalues (mesh
+   * Receives verified harmonics: `harmonics` (#InputPointIds by values.size(), at most
+   * StreamedBlockColumns, Solver/Memory.h) holds the harmonics of indices first, first + 1, ...
+   * of the basis, `values` their eigenvalues (mesh
    * units). Each index in [0, m) comes exactly once (unless Restart is called), in no
    * particular order across components, ascending within one.
    */

@@ -4,6 +4,7 @@
 #
 #   Basis.h      the one entry point: mesh + options + monitor -> verified basis
 #   Problem.h    its problem stage: checks, unit scale, operators, clamps, memory
+#   Streaming.h  filtering signals while the basis streams (BasisSink), never holding it
 #   Common/      types, defaults, progress and cancellation, threads: what every part uses
 #   Operators/   the discrete Laplacians of each kind of mesh (stiffness, mass, what was left out)
 #   Solver/      the eigensolver behind one interface: factorizations, bands, verification,
@@ -14,6 +15,7 @@ set(spectral_core_sources
   Basis.cxx
   Problem.cxx
   Common/BasisFile.cxx
+  Streaming.cxx
   Common/Seams.cxx
   Operators/Laplacian.cxx
   Operators/Operators.cxx
@@ -39,6 +41,7 @@ set(spectral_core_sources
 set(spectral_core_headers
   Basis.h
   Problem.h
+  Streaming.h
   Common/Constants.h
   Common/Defaults.h
   Common/Eigenvalues.h

@@ -21,6 +21,7 @@
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 #include "Solver/MassMatrix.h"
+#include "Solver/Memory.h"
 #include "Solver/Verification.h"
 
 #include <Eigen/Dense>
@@ -402,6 +403,37 @@ void Deliver(const SparseMatrix& M,
   options.Deliver(first, lambda, harmonics);
 }
 
+/**
+ * What a solve without KeepEigenvectors does with the pairs it lets go (detail::RetirePairs):
+ * verifies them as harmonics of the caller's pencil, as the final check verifies kept pairs,
+ * and delivers them (EigenOptions::Deliver), StreamedBlockColumns at a time (Memory.h), so that
+ * the harmonics of a whole retired block (up to three bands) are never copied at once.
+ * `scaling` (empty: none) turns the loop's vectors into harmonics, h = diag(scaling) y.
+ */
+void RetireInColumns(const SparseMatrix& L,
+  const SparseMatrix& M,
+  const EigenOptions& options,
+  const Vector& scaling,
+  const Vector& values,
+  const DenseMatrix& vectors,
+  int first,
+  EigenResult& result)
+{
+  for (Eigen::Index start = 0; start < values.size(); start += StreamedBlockColumns)
+  {
+    const Eigen::Index count = std::min<Eigen::Index>(StreamedBlockColumns, values.size() - start);
+    DenseMatrix harmonics = vectors.middleCols(start, count);
+    if (scaling.size() > 0)
+    {
+      ScaleRows(harmonics, scaling);
+    }
+    const Vector part = values.segment(start, count);
+    const int index = first + static_cast<int>(start);
+    detail::CheckSomeResiduals(L, M, options, part, harmonics, index, result);
+    Deliver(M, options, part, std::move(harmonics), index);
+  }
+}
+
 /// The band-by-band iteration (Bands.h), on the standard problem when M is a lumped mass.
 EigenResult SolveByBands(const SparseMatrix& L,
   const SparseMatrix& M,
@@ -422,10 +454,7 @@ EigenResult SolveByBands(const SparseMatrix& L,
   {
     const detail::RetirePairs retire =
       [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
-    {
-      detail::CheckSomeResiduals(L, M, options, values, vectors, first, result);
-      Deliver(M, options, values, vectors, first);
-    };
+    { RetireInColumns(L, M, options, Vector(), values, vectors, first, result); };
     return detail::BandEigenpairs(
       L, detail::MassMatrix{ M, false, deflation }, area, options, monitor, retire);
   }
@@ -446,12 +475,7 @@ EigenResult SolveByBands(const SparseMatrix& L,
   // the caller's pencil, as the final check verifies the pairs that are kept.
   const detail::RetirePairs retire =
     [&](const Vector& values, const DenseMatrix& vectors, int first, EigenResult& result)
-  {
-    DenseMatrix harmonics = vectors;
-    ScaleRows(harmonics, scaling);
-    detail::CheckSomeResiduals(L, M, options, values, harmonics, first, result);
-    Deliver(M, options, values, std::move(harmonics), first);
-  };
+  { RetireInColumns(L, M, options, scaling, values, vectors, first, result); };
   EigenResult result = detail::BandEigenpairs(
     S, detail::MassMatrix{ identity, true, deflation }, area, options, monitor, retire);
   ScaleRows(result.Eigenvectors, scaling);

@@ -63,9 +63,9 @@ MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
   bool volume)
 {
   MemoryEstimate estimate = EstimateBasisMemory(n, nUsed, m, bandSize, 0, false, volume);
-  const std::uint64_t block = std::min(static_cast<std::uint64_t>(std::max(m, 0)),
-    3 * static_cast<std::uint64_t>(EffectiveBandSize(m, bandSize)));
-  estimate.Basis = 2 * n * block * 8;
+  const std::uint64_t handed = std::min(
+    static_cast<std::uint64_t>(std::max(m, 0)), static_cast<std::uint64_t>(StreamedBlockColumns));
+  estimate.Basis = 2 * n * handed * 8;
   return estimate;
 }
 

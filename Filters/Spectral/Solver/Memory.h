@@ -33,10 +33,12 @@
  * size of 905 MiB (0.95e9 bytes).
  *
  * A streamed basis (BasisSink, Basis.h) keeps no output basis and runs the solver as for a
- * spectrum alone; its Basis term is instead the blocks in delivery, 2 n min(m, 3 k) 8 (a
- * retired block of at most three bands in the solver's rows and again on the output's rows):
- * EstimateStreamedMemory, independent of m once m > 3 k. A caller that accumulates what it
- * receives adds its own arrays (vtkManifoldHarmonicSmoothing: the signals' sums).
+ * spectrum alone; its Basis term is instead the blocks in delivery, 2 n min(m,
+ * StreamedBlockColumns) 8 (the solver verifies and hands over the pairs it lets go that many at
+ * a time, as harmonics, and again on the output's rows): EstimateStreamedMemory, independent of
+ * m once m > 3 k, below a double in-memory estimate once m > 2 StreamedBlockColumns (128).
+ * A caller that accumulates what it receives adds its own arrays (vtkManifoldHarmonicSmoothing:
+ * the signals' sums).
  *
  * Used by vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing; tested by
  * Testing/Core/TestMemory.cxx.
@@ -88,6 +90,10 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   int bytesPerValue,
   bool keepEigenvectors = true,
   bool volume = false);
+
+/// The most pairs a solve without KeepEigenvectors verifies and hands over at once as
+/// harmonics (EigenOptions::Deliver), and a streamed basis its sink (BasisSink::Harmonics).
+constexpr int StreamedBlockColumns = 64;
 
 /**
  * Estimate the memory of streaming an n by m basis (BasisSink; see the file documentation):
