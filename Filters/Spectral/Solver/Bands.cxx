@@ -54,13 +54,17 @@ int PairsPerBand(int m, int bandSize, Eigen::Index n)
 namespace
 {
 
-/// Eigenpairs accepted so far, ascending. The vectors of the first Retired values have been let
-/// go (verified, KeepEigenvectors false); column j of Vectors is the vector of value Retired + j.
+/// Eigenpairs accepted so far, ascending. The first Retired are final: no later band merges
+/// them again (RetireOldVectors), whether their vectors are kept or not, so that a basis kept in
+/// memory and one streamed out (EigenOptions::KeepEigenvectors false) are the same computation.
+/// Without KeepEigenvectors the vectors of the retired values are let go (verified) and Dropped
+/// == Retired; with it Dropped stays 0. Column j of Vectors is the vector of value Dropped + j.
 struct Accepted
 {
   DenseMatrix Vectors;
   std::vector<double> Values;
   int Retired = 0;
+  int Dropped = 0;
   /// The first Fixed pairs are the null vectors of MassMatrix::Deflation, known in advance: no
   /// merge changes them. Their values are the Rayleigh quotients of the null vectors (0 up to
   /// the rounding of L), where every inertia count of L as rounded sees them, until Run returns
@@ -71,7 +75,9 @@ struct Accepted
 
   int Count() const { return static_cast<int>(this->Values.size()); }
   /// Number of values whose vectors are kept.
-  int Kept() const { return this->Count() - this->Retired; }
+  int Kept() const { return this->Count() - this->Dropped; }
+  /// Number of values that later bands may still merge.
+  int Active() const { return this->Count() - this->Retired; }
   int CountBelow(double x) const
   {
     return static_cast<int>(
@@ -106,7 +112,7 @@ void Merge(Accepted& accepted,
     accepted.Vectors.conservativeResize(Eigen::NoChange, accepted.Kept() + 2 * values.size());
   }
   accepted.Vectors.middleCols(accepted.Kept(), values.size()) = vectors;
-  auto Y = accepted.Vectors.middleCols(first - accepted.Retired, p);
+  auto Y = accepted.Vectors.middleCols(first - accepted.Dropped, p);
 
   DenseMatrix G = M.Identity ? TransposeProduct(Y, Y) : TransposeProduct(Y, M.Matrix * Y);
   auto LY = Workspace::Columns(work.Image, Y.rows(), p);
@@ -312,8 +318,8 @@ EigenResult BandLoop::Run()
 }
 
 //------------------------------------------------------------------------------
-// Verify the accepted pairs below index `end` whose vectors are still kept, and let their
-// vectors go.
+// Make the accepted pairs below index `end` final; without KeepEigenvectors, verify them and let
+// their vectors go.
 void BandLoop::Retire(int end)
 {
   Accepted& accepted = this->AcceptedPairs;
@@ -322,12 +328,17 @@ void BandLoop::Retire(int end)
   {
     return;
   }
-  const Vector values = Eigen::Map<const Vector>(accepted.Values.data() + accepted.Retired, count);
-  this->RetireCheck(values, accepted.Vectors.leftCols(count), accepted.Retired, this->Result);
-  const int kept = accepted.Kept() - count;
-  for (int j = 0; j < kept; ++j)
+  if (!this->Options.KeepEigenvectors)
   {
-    accepted.Vectors.col(j) = accepted.Vectors.col(count + j);
+    const Vector values =
+      Eigen::Map<const Vector>(accepted.Values.data() + accepted.Retired, count);
+    this->RetireCheck(values, accepted.Vectors.leftCols(count), accepted.Retired, this->Result);
+    const int kept = accepted.Kept() - count;
+    for (int j = 0; j < kept; ++j)
+    {
+      accepted.Vectors.col(j) = accepted.Vectors.col(count + j);
+    }
+    accepted.Dropped += count;
   }
   accepted.Retired += count;
   accepted.RetiredBelow = accepted.Retired < accepted.Count()
@@ -336,12 +347,13 @@ void BandLoop::Retire(int end)
 }
 
 //------------------------------------------------------------------------------
-// Without KeepEigenvectors: once more than two bands' worth of vectors are kept, retire those a
-// band below what is proven, at a gap of the spectrum (a multiple eigenvalue stays whole).
+// Once more than two bands' worth of pairs are active, retire those a band below what is
+// proven, at a gap of the spectrum (a multiple eigenvalue stays whole): the same pairs with and
+// without KeepEigenvectors, which decides only whether their vectors are kept (Retire).
 void BandLoop::RetireOldVectors()
 {
   const Accepted& accepted = this->AcceptedPairs;
-  if (this->Options.KeepEigenvectors || accepted.Kept() <= 2 * this->Nev)
+  if (accepted.Active() <= 2 * this->Nev)
   {
     return;
   }
