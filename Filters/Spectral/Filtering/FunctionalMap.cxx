@@ -522,8 +522,9 @@ std::vector<int> FarthestPoints(const SpectralShape& shape, const Spectrum& spec
   return chosen;
 }
 
-/// The rows `points` of a shape: its basis and eigenvalues, and the weight 1 for each point
-/// (farthest-point samples cover about equal areas, whatever the masses of the points).
+/// The rows `points` of a shape at unit area: its basis and eigenvalues, and the same weight for
+/// each point (farthest-point samples cover about equal areas, whatever the masses of the points),
+/// summing to 1 (so that AtUnitArea leaves the samples as they are).
 SpectralShape Restricted(const SpectralShape& shape, const std::vector<int>& points)
 {
   SpectralShape part;
@@ -532,10 +533,23 @@ SpectralShape Restricted(const SpectralShape& shape, const std::vector<int>& poi
   for (std::size_t r = 0; r < points.size(); ++r)
   {
     part.Harmonics.row(static_cast<Eigen::Index>(r)) = shape.Harmonics.row(points[r]);
-    part.Mass[static_cast<Eigen::Index>(r)] = 1.0;
+    part.Mass[static_cast<Eigen::Index>(r)] = 1.0 / static_cast<double>(points.size());
   }
   part.Eigenvalues = shape.Eigenvalues;
   return part;
+}
+
+/// `shape` at unit area (UnitArea), or `shape` itself when its area is 1 to rounding (the shapes
+/// inside ComputeFunctionalMap, already scaled): `storage` holds the scaled copy.
+const SpectralShape& AtUnitArea(const SpectralShape& shape, SpectralShape& storage)
+{
+  const double area = shape.Mass.sum();
+  if (std::abs(area - 1.0) <= 1e-12 || !(area > 0.0) || !std::isfinite(area))
+  {
+    return shape; // CheckShape refuses a shape without positive finite area.
+  }
+  storage = UnitArea(shape);
+  return storage;
 }
 
 std::vector<bool> PositiveMass(const Vector& mass)
@@ -617,8 +631,11 @@ std::vector<int> NearestRows(const RowMatrix& queries, const RowMatrix& database
 
 //------------------------------------------------------------------------------
 std::vector<int> PointMapFromFunctionalMap(
-  const SpectralShape& source, const SpectralShape& target, const DenseMatrix& map, int threads)
+  const SpectralShape& givenSource, const SpectralShape& givenTarget, const DenseMatrix& map, int threads)
 {
+  SpectralShape scaledSource, scaledTarget;
+  const SpectralShape& source = AtUnitArea(givenSource, scaledSource);
+  const SpectralShape& target = AtUnitArea(givenTarget, scaledTarget);
   const Eigen::Index k2 = map.rows();
   const Eigen::Index k1 = map.cols();
   if (k1 < 1 || k2 < 1 || k1 > source.Harmonics.cols() || k2 > target.Harmonics.cols())
@@ -663,15 +680,31 @@ std::vector<int> PointMapFromFunctionalMap(
 }
 
 //------------------------------------------------------------------------------
+SpectralShape UnitArea(const SpectralShape& shape)
+{
+  const double area = shape.Mass.sum();
+  SpectralShape scaled;
+  scaled.Harmonics = shape.Harmonics * std::sqrt(area);
+  scaled.Eigenvalues = shape.Eigenvalues * area;
+  scaled.Mass = shape.Mass / area;
+  scaled.Vertices = shape.Vertices / std::sqrt(area);
+  scaled.Faces = shape.Faces;
+  return scaled;
+}
+
+//------------------------------------------------------------------------------
 bool OnSurface(const SpectralShape& shape, Eigen::Index i)
 {
   return shape.Mass[i] > 0.0 || !shape.Harmonics.row(i).isZero(0.0);
 }
 
 //------------------------------------------------------------------------------
-DenseMatrix FunctionalMapFromPointMap(const SpectralShape& source, const SpectralShape& target,
-  const std::vector<int>& correspondingPointIds, int k)
+DenseMatrix FunctionalMapFromPointMap(const SpectralShape& givenSource,
+  const SpectralShape& givenTarget, const std::vector<int>& correspondingPointIds, int k)
 {
+  SpectralShape scaledSource, scaledTarget;
+  const SpectralShape& source = AtUnitArea(givenSource, scaledSource);
+  const SpectralShape& target = AtUnitArea(givenTarget, scaledTarget);
   if (k < 1 || k > source.Harmonics.cols() || k > target.Harmonics.cols())
   {
     throw InvalidInput("a functional map of size " + std::to_string(k) +
@@ -703,12 +736,17 @@ DenseMatrix FunctionalMapFromPointMap(const SpectralShape& source, const Spectra
 }
 
 //------------------------------------------------------------------------------
-FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
-  const SpectralShape& target, const FunctionalMapOptions& options, const Monitor& monitor)
+FunctionalMapResult ComputeFunctionalMap(const SpectralShape& givenSource,
+  const SpectralShape& givenTarget, const FunctionalMapOptions& options, const Monitor& monitor)
 {
   const auto start = std::chrono::steady_clock::now();
-  CheckShape(source, "source");
-  CheckShape(target, "target");
+  CheckShape(givenSource, "source");
+  CheckShape(givenTarget, "target");
+  // Two scans of one object differ in size (units, or the area noise adds): the map is that of
+  // the shapes at unit area, whose spectra and harmonics compare.
+  SpectralShape scaledSource, scaledTarget;
+  const SpectralShape& source = AtUnitArea(givenSource, scaledSource);
+  const SpectralShape& target = AtUnitArea(givenTarget, scaledTarget);
   CheckOptions(options, source, target);
   FunctionalMapResult result;
   std::tie(result.InitialSize, result.FinalSize) =
@@ -860,9 +898,12 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
 }
 
 //------------------------------------------------------------------------------
-RowMatrix TransferThroughMap(const SpectralShape& source, const SpectralShape& target,
+RowMatrix TransferThroughMap(const SpectralShape& givenSource, const SpectralShape& givenTarget,
   const DenseMatrix& map, const ConstRowView& values)
 {
+  SpectralShape scaledSource, scaledTarget;
+  const SpectralShape& source = AtUnitArea(givenSource, scaledSource);
+  const SpectralShape& target = AtUnitArea(givenTarget, scaledTarget);
   const Eigen::Index k2 = map.rows();
   const Eigen::Index k1 = map.cols();
   if (k1 > source.Harmonics.cols() || k2 > target.Harmonics.cols())

@@ -178,6 +178,17 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& source,
   const FunctionalMapOptions& options,
   const Monitor& monitor = Monitor());
 
+/**
+ * `shape` scaled to unit area (A = the sum of its masses): harmonics times sqrt(A), eigenvalues
+ * times A, masses and points divided by A and sqrt(A). Two scans of one object differ in size
+ * (other units, or the area that noise adds: a 0.2% noise made a scan's area 16% larger and its
+ * map 20% off), and their spectra and harmonics compare only at the same size, as pyFM and
+ * ZoomOut scale them: ComputeFunctionalMap, PointMapFromFunctionalMap, FunctionalMapFromPointMap
+ * and TransferThroughMap all work on the shapes at unit area, and the map C relates the
+ * coefficients of functions in their unit-area bases (a constant has coefficient 1 on both).
+ */
+SpectralShape UnitArea(const SpectralShape& shape);
+
 /// Whether point i of `shape` is on its surface: positive mass or a non-zero row of harmonics.
 bool OnSurface(const SpectralShape& shape, Eigen::Index i);
 
