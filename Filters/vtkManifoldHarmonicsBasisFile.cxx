@@ -213,12 +213,15 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   const std::uint64_t fileBytes = n * static_cast<std::uint64_t>(m) * options.BytesPerValue;
   const spectral::BasisStorage asked =
     vtkManifoldHarmonicsEnums::To(vtkManifoldHarmonicsEnums::Storage, requested, "Storage");
+  // Checked before the solve: a long solve must not end on a file that cannot be created.
+  const std::string directory = spectral::DirectoryOf(path);
   const spectral::StorageChoice choice = spectral::ChooseBasisStorage(asked,
     inMemory,
     inFile,
     available,
     fileBytes,
-    spectral::FreeDiskSpace(spectral::DirectoryOf(path)));
+    spectral::FreeDiskSpace(directory),
+    spectral::UnwritableDirectory(directory));
   if (choice.Chosen == spectral::BasisStorage::File)
   {
     plan.Path = path;

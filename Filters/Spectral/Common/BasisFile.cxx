@@ -601,25 +601,32 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
   std::uint64_t inFile,
   std::uint64_t available,
   std::uint64_t fileBytes,
-  std::uint64_t diskFree)
+  std::uint64_t diskFree,
+  const std::string& unwritable)
 {
   StorageChoice choice;
   const std::string memory =
     "about " + ByteCount(inMemory) + " needed in memory, " + ByteCount(available) + " available";
-  const std::string disk =
-    ByteCount(fileBytes) + " file, " + ByteCount(diskFree) + " free on its disk";
+  const std::string disk = unwritable.empty()
+    ? ByteCount(fileBytes) + " file, " + ByteCount(diskFree) + " free on its disk"
+    : unwritable;
   if (requested == BasisStorage::InMemory)
   {
     choice.Chosen = BasisStorage::InMemory;
     choice.Reason = "in memory, as asked (" + memory + ")";
     return choice;
   }
-  const bool diskFits = fileBytes <= diskFree;
+  const bool diskFits = unwritable.empty() && fileBytes <= diskFree;
   if (requested == BasisStorage::File)
   {
     choice.Chosen = diskFits ? BasisStorage::File : BasisStorage::Automatic;
     choice.Reason = "in a file, as asked (" + disk + ")";
-    if (!diskFits)
+    if (!unwritable.empty())
+    {
+      choice.Refusal = "The basis file cannot be created: " + unwritable +
+        ". Choose a BasisFileName in a writable directory (or set TMPDIR for a temporary one).";
+    }
+    else if (!diskFits)
     {
       choice.Refusal = "The basis file does not fit on its disk: " + disk +
         ". Free disk space, choose another BasisFileName (a disk with " + ByteCount(fileBytes) +
@@ -642,7 +649,8 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
   }
   choice.Chosen = BasisStorage::Automatic;
   choice.Refusal = "A file would not do either: " +
-    (inFile > available
+    (!unwritable.empty() ? unwritable + " (choose a BasisFileName in a writable directory)"
+      : inFile > available
         ? "the solve alone needs about " + ByteCount(inFile) + " of memory"
         : "the " + ByteCount(fileBytes) + " file needs a disk with that much free (" +
           ByteCount(diskFree) + " free on its disk; name a BasisFileName on another)") +
@@ -660,6 +668,30 @@ std::uint64_t FreeDiskSpace(const std::string& directory)
     return ~std::uint64_t(0);
   }
   return static_cast<std::uint64_t>(status.f_bavail) * static_cast<std::uint64_t>(status.f_frsize);
+}
+
+//------------------------------------------------------------------------------
+std::string UnwritableDirectory(const std::string& directory)
+{
+  struct stat status;
+  if (stat(directory.c_str(), &status) != 0)
+  {
+    return "the directory '" + directory + "' does not exist";
+  }
+  if (!S_ISDIR(status.st_mode))
+  {
+    return "'" + directory + "' is not a directory";
+  }
+  struct statvfs system;
+  if (statvfs(directory.c_str(), &system) == 0 && (system.f_flag & ST_RDONLY))
+  {
+    return "the directory '" + directory + "' is on a read-only file system";
+  }
+  if (access(directory.c_str(), W_OK | X_OK) != 0)
+  {
+    return "the directory '" + directory + "' is not writable";
+  }
+  return std::string();
 }
 
 //------------------------------------------------------------------------------

@@ -215,17 +215,27 @@ struct StorageChoice
  * refused when the disk lacks room; the memory check of the solve itself stays with ComputeBasis).
  * \param available Bytes of memory available (MemoryLimit or the system's).
  * \param diskFree Bytes free on the file's disk.
+ * \param unwritable Why no file can be created in the file's directory (UnwritableDirectory),
+ *        empty when one can: a file is then never chosen, and the refusal says why.
  */
 StorageChoice ChooseBasisStorage(BasisStorage requested,
   std::uint64_t inMemory,
   std::uint64_t inFile,
   std::uint64_t available,
   std::uint64_t fileBytes,
-  std::uint64_t diskFree);
+  std::uint64_t diskFree,
+  const std::string& unwritable = std::string());
 
 /// Bytes free for an unprivileged user on the disk that holds `directory` (statvfs); the
 /// largest value when unknown (creating the file then reports the fault).
 std::uint64_t FreeDiskSpace(const std::string& directory);
+
+/**
+ * Why no file can be created in `directory` (it does not exist, is not a directory, is not
+ * writable, or is on a read-only file system), or an empty string when one can: checked before
+ * a solve that would write its basis there, so that a long solve does not end on an error.
+ */
+std::string UnwritableDirectory(const std::string& directory);
 
 /// The directory of a path ("." for a bare name).
 std::string DirectoryOf(const std::string& path);
