@@ -330,6 +330,7 @@ struct vtkFunctionalMap::Internals
 vtkFunctionalMap::vtkFunctionalMap()
   : vtkManifoldHarmonicsAlgorithm(POINT_SET_AND_TABLE)
   , NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
+  , MinimumComponentSize(0)
   , TransferArrays(true)
   , AlignHarmonics(false)
   , Internal(new Internals)
@@ -496,6 +497,7 @@ bool vtkFunctionalMap::UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& w
   }
   this->SetProgressText(port == 1 ? "Basis of the source" : "Basis of the target");
   slot.Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
+  slot.Basis->SetMinimumComponentSize(this->MinimumComponentSize);
   slot.Basis->SetNumberOfThreads(this->NumberOfThreads);
   slot.Basis->SetAbortExecute(this->GetAbortExecute());
   this->Internal->BasisError.clear();
@@ -718,6 +720,7 @@ void vtkFunctionalMap::PrintSelf(ostream& os, vtkIndent indent)
     os << "\n";
   };
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << "\n";
+  os << indent << "MinimumComponentSize: " << this->MinimumComponentSize << "\n";
   os << indent << "InitialSize: " << this->InitialSize << "\n";
   os << indent << "FinalSize: " << this->FinalSize << "\n";
   os << indent << "ZoomOutStep: " << this->ZoomOutStep << "\n";

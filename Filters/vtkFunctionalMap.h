@@ -129,6 +129,17 @@ public:
 
   ///@{
   /**
+   * Connected components of fewer points are left out of the internal bases (see
+   * vtkManifoldHarmonicBasis::SetMinimumComponentSize): a scan's debris then takes no harmonic
+   * and gets no corresponding point (-1). Inputs that carry their own basis are taken as they are.
+   * Default is 0: every component.
+   */
+  vtkSetClampMacro(MinimumComponentSize, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MinimumComponentSize, int);
+  ///@}
+
+  ///@{
+  /**
    * The size k of the map estimated from descriptors (the harmonics it uses on each shape).
    * 0 (the default, spectral::FunctionalMapOptions) takes min(30, FinalSize)
    * (spectral::DefaultFunctionalMapInitialSize); otherwise at least 1 and at most FinalSize.
@@ -288,6 +299,7 @@ protected:
   const char* GetWorkName() override { return "Functional map"; }
 
   int NumberOfHarmonics;
+  int MinimumComponentSize;
   int InitialSize;
   int FinalSize;
   int ZoomOutStep;
