@@ -48,8 +48,10 @@ constexpr int DefaultNumberOfMapDescriptors = 50;
 /// (each term divided by its own scale, FunctionalMap.h).
 constexpr double DefaultCommutativityWeight = 0.1;
 /// The weight of the orientation term (FunctionalMapOptions::OrientationTerm) relative to
-/// descriptor preservation.
-constexpr double DefaultOrientationWeight = 1.0;
+/// descriptor preservation: 0.1 kept the right map of a bunny against its 50% decimation (0.83%
+/// of the diagonal, as without the term) and gave the mirror one with the target turned over;
+/// at 1 the term outweighed the descriptors (13%).
+constexpr double DefaultOrientationWeight = 0.1;
 /// The weight of the landmark descriptors relative to the other descriptors.
 constexpr double DefaultLandmarkWeight = 1.0;
 } // namespace spectral

@@ -816,10 +816,16 @@ FunctionalMapResult ComputeFunctionalMap(const SpectralShape& givenSource,
     source.Eigenvalues.head(k0), target.Eigenvalues.head(k0), options.CommutativityWeight);
   if (options.OrientationTerm && options.OrientationWeight > 0.0)
   {
-    // One operator pair per OrientationDescriptorStep-th descriptor, each scaled by the norm of
-    // the source's operator; their weights share OrientationWeight.
+    // One operator pair per OrientationDescriptorStep-th descriptor of the lowest third of the
+    // energies, each scaled by the norm of the source's operator; their weights share
+    // OrientationWeight. The wave kernels of higher energies differ between two triangulations
+    // of one shape (a bunny and its 50% decimation: operators twice as large on one as on the
+    // other), and their operators pulled the map off the right one in either orientation (30%
+    // of the diagonal); on the lowest third the term keeps the right map (0.83%, as without it)
+    // and the mirror one when the target is turned over (24%).
     std::vector<std::pair<DenseMatrix, DenseMatrix>> operators;
-    for (Eigen::Index c = OrientationDescriptorStep / 2; c < F1.cols(); c += OrientationDescriptorStep)
+    for (Eigen::Index c = OrientationDescriptorStep / 2; c < F1.cols() / 3;
+         c += OrientationDescriptorStep)
     {
       DenseMatrix X = OrientationOperator(source, F1.col(c), k0);
       DenseMatrix Y = OrientationOperator(target, F2.col(c), k0);

@@ -849,7 +849,7 @@ bool TestPrintSelf()
   bool ok = true;
   for (const char* expected : { "NumberOfHarmonics: 100", "InitialSize: 0", "FinalSize: 0",
          "ZoomOutStep:", "ZoomOutSamples: 2000", "NumberOfDescriptors:", "DescriptorWeight:", "CommutativityWeight:",
-         "LandmarkWeight:", "OrientationWeight: 1", "OrientationTerm: Off",
+         "LandmarkWeight:", "OrientationWeight: 0.1", "OrientationTerm: Off",
          "SourceLandmarks: 4", "TargetLandmarks: 7", "TransferArrays: On",
          "SmoothArrays: Temperature", "LabelArrays:", "AlignHarmonics: Off" })
   {
