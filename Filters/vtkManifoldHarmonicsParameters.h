@@ -12,6 +12,7 @@
 #ifndef vtkManifoldHarmonicsParameters_h
 #define vtkManifoldHarmonicsParameters_h
 
+#include "Spectral/Common/BasisFile.h" // ByteCount
 #include "vtkObject.h"
 #include "vtkSetGet.h"
 
@@ -50,20 +51,11 @@ inline std::uint64_t MemoryLimitBytes(double mebibytes)
     : 0;
 }
 
-/// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB".
+/// A byte count for people: "1.5 GiB", "380.0 MiB", "12.0 KiB" (spectral::ByteCount, the one
+/// rule of the core's messages and the filters').
 inline std::string Bytes(std::uint64_t bytes)
 {
-  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB" };
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4)
-  {
-    value /= 1024.0;
-    ++unit;
-  }
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(unit == 0 ? 0 : 1) << value << " " << units[unit];
-  return text.str();
+  return spectral::ByteCount(bytes);
 }
 } // namespace vtkManifoldHarmonicsParameters
 
