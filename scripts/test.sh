@@ -91,10 +91,15 @@ if [ "${SKIP_SANITIZE:-0}" != 1 ]; then
     sanitize_compiler=(-DMANIFOLDHARMONICS_FUZZ=OFF)
     fuzz_seconds=0
   fi
+  # Line tables only (-g1): enough for the sanitizers' reports, and a quarter less compile
+  # time than -g (clang, FunctionalMap.cxx: 24 s against 32 s).
+  sanitize_flags="-O2 -g1 -DNDEBUG"
   echo "=== Core with sanitizers: ${sanitize_dir}"
   stage_start=${SECONDS}
   cmake -S "${source_dir}/Testing/Core" -B "${sanitize_dir}" \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_FLAGS_RELWITHDEBINFO="${sanitize_flags}" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="${sanitize_flags}" \
     -DMANIFOLDHARMONICS_SANITIZE=ON \
     -DMANIFOLDHARMONICS_ARCH=x86-64 \
     "${sanitize_compiler[@]}"
