@@ -78,10 +78,13 @@ int PairsPerBand(int m, int bandSize, Eigen::Index n);
 /**
  * What a solve that does not keep its eigenvectors does with the pairs it lets go: verify them
  * (CheckSomeResiduals) on the caller's pencil. Called with the pairs' values, their vectors in
- * the loop's pencil, the index of the first, and the result whose figures it raises.
+ * the loop's pencil (the loop's own columns, not a copy), the index of the first, and the result
+ * whose figures it raises.
  */
-using RetirePairs =
-  std::function<void(const Vector& values, const DenseMatrix& vectors, int first, EigenResult&)>;
+using RetirePairs = std::function<void(const Vector& values,
+  const Eigen::Ref<const DenseMatrix>& vectors,
+  int first,
+  EigenResult&)>;
 
 /**
  * The band-by-band shift-invert Lanczos iteration (see EigenSolver.h and the band policy above)

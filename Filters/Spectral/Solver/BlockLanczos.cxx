@@ -511,14 +511,16 @@ int BlockLanczosBand::Verified(const Eigen::Ref<const DenseMatrix>& X,
   double reference,
   std::vector<Eigen::Index>& nearest) const
 {
-  // The backward errors of the pairs: |L| |X| and |M| |X|, with L the band's stiffness
-  // (L - sigma M) + sigma M.
+  // The backward errors of the pairs whose residual alone fails (|L| |x| and |M| |x|, a column
+  // at a time), with L the band's stiffness (L - sigma M) + sigma M.
   BackwardScale backward;
   backward.Tolerance = 0.5 * this->Options.BackwardErrorTolerance;
-  const SparseMatrix stiffness = this->Factor.ShiftedMatrix() + this->Sigma * this->M.Matrix;
-  const DenseMatrix absX = X.cwiseAbs();
-  backward.AbsLX = stiffness.cwiseAbs() * absX;
-  backward.AbsMX = this->M.Identity ? absX : DenseMatrix(this->M.Matrix.cwiseAbs() * absX);
+  const SparseMatrix absL =
+    SparseMatrix(this->Factor.ShiftedMatrix() + this->Sigma * this->M.Matrix).cwiseAbs();
+  const SparseMatrix absM = this->M.Identity ? SparseMatrix() : SparseMatrix(this->M.Matrix.cwiseAbs());
+  backward.AbsL = &absL;
+  backward.AbsM = this->M.Identity ? nullptr : &absM;
+  backward.X = &X;
   return Verify(AX,
     this->MassX(X, MX),
     shifted,

@@ -35,14 +35,17 @@ double ResidualReference(const Vector& lambda, double traceRatio);
 namespace detail
 {
 /**
- * What the componentwise backward errors of Ritz pairs X need besides their residuals:
- * AbsLX = |L| |X| and AbsMX = |M| |X|, and the tolerance (EigenOptions::BackwardErrorTolerance).
- * Empty matrices leave the backward error out.
+ * What the componentwise backward errors of Ritz pairs X need besides their residuals: |L|,
+ * |M| (null for the identity) and X, from which |L| |x| and |M| |x| are formed one column at a
+ * time, for the pairs whose residual alone does not pass (an n-row vector each, where whole
+ * n x k matrices of them doubled a band's memory), and the tolerance
+ * (EigenOptions::BackwardErrorTolerance). A null AbsL leaves the backward error out.
  */
 struct BackwardScale
 {
-  DenseMatrix AbsLX;
-  DenseMatrix AbsMX;
+  const SparseMatrix* AbsL = nullptr;
+  const SparseMatrix* AbsM = nullptr;
+  const Eigen::Ref<const DenseMatrix>* X = nullptr;
   double Tolerance = 0.0;
 };
 
