@@ -331,6 +331,7 @@ vtkFunctionalMap::vtkFunctionalMap()
   : vtkManifoldHarmonicsAlgorithm(POINT_SET_AND_TABLE)
   , NumberOfHarmonics(vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS)
   , MinimumComponentSize(0)
+  , MemoryLimit(0.0)
   , TransferArrays(true)
   , AlignHarmonics(false)
   , Internal(new Internals)
@@ -465,6 +466,31 @@ int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable
 }
 
 //------------------------------------------------------------------------------
+// MemoryLimit less what the other port's internal basis holds (its harmonics and mass); at
+// least one byte, since 0 would mean the system's memory.
+double vtkFunctionalMap::BasisMemoryLimit(int port) const
+{
+  double limit = this->MemoryLimit;
+  const Internals::Slot& other = this->Internal->Slots[1 - port];
+  if (limit <= 0.0 || !other.Basis)
+  {
+    return limit;
+  }
+  if (vtkDataSet* held =
+        vtkDataSet::SafeDownCast(vtkDataObject::GetData(other.Basis->GetOutputInformation(0))))
+  {
+    for (const char* name : { Names::Harmonics, Names::Mass })
+    {
+      if (vtkDataArray* array = held->GetPointData()->GetArray(name))
+      {
+        limit -= static_cast<double>(array->GetActualMemorySize()) / 1024.0; // KiB
+      }
+    }
+  }
+  return std::max(limit, 1.0 / 1048576.0);
+}
+
+//------------------------------------------------------------------------------
 bool vtkFunctionalMap::UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& withBasis)
 {
   if (input->GetPointData()->GetArray(Names::Harmonics))
@@ -499,6 +525,7 @@ bool vtkFunctionalMap::UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& w
   slot.Basis->SetNumberOfHarmonics(this->NumberOfHarmonics);
   slot.Basis->SetMinimumComponentSize(this->MinimumComponentSize);
   slot.Basis->SetNumberOfThreads(this->NumberOfThreads);
+  slot.Basis->SetMemoryLimit(this->BasisMemoryLimit(port));
   slot.Basis->SetAbortExecute(this->GetAbortExecute());
   this->Internal->BasisError.clear();
   slot.Basis->Update();
@@ -721,6 +748,8 @@ void vtkFunctionalMap::PrintSelf(ostream& os, vtkIndent indent)
   };
   os << indent << "NumberOfHarmonics: " << this->NumberOfHarmonics << "\n";
   os << indent << "MinimumComponentSize: " << this->MinimumComponentSize << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB"
+     << (this->MemoryLimit > 0.0 ? "\n" : " (the memory the system reports available)\n");
   os << indent << "InitialSize: " << this->InitialSize << "\n";
   os << indent << "FinalSize: " << this->FinalSize << "\n";
   os << indent << "ZoomOutStep: " << this->ZoomOutStep << "\n";

@@ -140,6 +140,18 @@ public:
 
   ///@{
   /**
+   * The memory, in MiB, that the internal bases may take together (see
+   * vtkManifoldHarmonicBasis::SetMemoryLimit, whose estimate, smaller bands and error they use):
+   * each basis is computed within this limit less what the other one holds already. 0 uses
+   * what the system reports available when each is computed. Range [0, VTK_DOUBLE_MAX].
+   * Default is 0.
+   */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  ///@{
+  /**
    * The size k of the map estimated from descriptors (the harmonics it uses on each shape).
    * 0 (the default, spectral::FunctionalMapOptions) takes min(30, FinalSize)
    * (spectral::DefaultFunctionalMapInitialSize); otherwise at least 1 and at most FinalSize.
@@ -300,6 +312,7 @@ protected:
 
   int NumberOfHarmonics;
   int MinimumComponentSize;
+  double MemoryLimit;
   int InitialSize;
   int FinalSize;
   int ZoomOutStep;
@@ -320,6 +333,7 @@ private:
   /// The basis of the shape on `port`: its own arrays, or those of its internal basis, updated.
   /// \return false after an abort.
   bool UpdateBasis(int port, vtkPointSet* input, vtkPointSet*& withBasis);
+  double BasisMemoryLimit(int port) const;
   /// The internal bases' progress as this filter's (the first half); passes an abort on.
   void ForwardProgress(vtkObject* caller, unsigned long event, void* data);
   /// Keeps the first error of an internal basis (or of its executive) during an update, which

@@ -330,9 +330,10 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
           << spectral::ByteCount(need.Total()) << " needed (basis "
           << spectral::ByteCount(need.Basis) << ", solver eigenvectors "
-          << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace "
+          << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace and operators "
           << spectral::ByteCount(need.Krylov) << ", sparse factor "
-          << spectral::ByteCount(need.Factor) << "), " << spectral::ByteCount(e.Available)
+          << spectral::ByteCount(need.Factor) << ", the process's own "
+          << spectral::ByteCount(need.Overhead) << "), " << spectral::ByteCount(e.Available)
           << " available (" << (limited ? "MemoryLimit" : "reported by the system")
           << "). Compute fewer harmonics";
   if (!floats)
@@ -340,9 +341,18 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
     message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
             << ")";
   }
-  message << ", choose a smaller BandSize (now "
-          << spectral::EffectiveBandSize(m, self->GetBandSize()) << ")"
-          << (limited ? " or raise MemoryLimit." : " or free memory.");
+  if (self->GetBandSize() > 0)
+  {
+    message << ", set BandSize to 0 (automatic: bands as small as "
+            << spectral::SmallestPlannedBand << " eigenpairs where the memory needs it; now "
+            << self->GetBandSize() << ")";
+  }
+  message << (limited ? " or raise MemoryLimit." : " or free memory.");
+  if (self->GetBandSize() <= 0 && spectral::EffectiveBandSize(m, 0) > spectral::SmallestPlannedBand)
+  {
+    message << " (The estimate is for bands of " << spectral::SmallestPlannedBand
+            << " eigenpairs, the smallest that BandSize 0, automatic, goes down to.)";
+  }
   return message.str();
 }
 

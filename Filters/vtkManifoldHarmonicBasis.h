@@ -267,7 +267,8 @@ public:
   /**
    * Number of eigenpairs the solver computes per band (per shift-invert Lanczos run). Small
    * bands keep each Lanczos basis small; large bands need fewer factorizations. 0 chooses
-   * automatically: a single band for up to 120 harmonics, else bands of 100. Range
+   * automatically: a single band for up to 120 harmonics, else bands of 100; smaller ones, down
+   * to 20 eigenpairs, where those do not fit the memory (MemoryLimit; a warning says so). Range
    * [0, VTK_INT_MAX]. Default is 0.
    */
   vtkSetClampMacro(BandSize, int, 0, VTK_INT_MAX);
@@ -325,10 +326,11 @@ public:
    * The memory, in MiB (2^20 bytes), that the computation may use; 0 uses what the system
    * reports available when the filter runs (MemAvailable in /proc/meminfo on Linux, free
    * physical pages elsewhere). When the estimate of Filters/Spectral/Solver/Memory.h exceeds it,
-   * Storage AUTOMATIC keeps the basis in a file (whose mapped pages are page cache, not counted),
-   * and when the solve alone exceeds it the filter reports an error (how much is needed and
-   * available; fewer harmonics, BasisPrecision FLOAT or a smaller BandSize) and produces an
-   * empty output. Set a limit to keep room for other
+   * Storage AUTOMATIC keeps the basis in a file (whose mapped pages are page cache, not counted);
+   * where the automatic bands (BandSize 0) do not fit, the solve runs in smaller ones, down to
+   * 20 eigenpairs (spectral::SmallestPlannedBand), and warns; and when the solve alone still
+   * exceeds it the filter reports an error (how much is needed and available; fewer harmonics,
+   * BasisPrecision FLOAT, BandSize 0) and produces an empty output. Set a limit to keep room for other
    * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
    */
   vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);

@@ -292,17 +292,27 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
   const std::uint64_t limit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(this->MemoryLimit);
   const std::uint64_t available = limit > 0 ? limit : spectral::AvailableMemory();
   const char* from = limit > 0 ? "MemoryLimit" : "reported by the system";
-  const std::uint64_t inMemory = spectral::EstimateBasisMemory(n,
+  // In the bands the solve's memory plan would choose (Solver/Memory.h); streamed, the core's
+  // share leaves room for the filter's own arrays (as ExecuteStreamed gives it).
+  const std::uint64_t inMemory = spectral::PlanBasisMemory(n,
     n,
     m,
     0,
     vtkManifoldHarmonicsEnums::To(
       vtkManifoldHarmonicsEnums::BasisPrecision, this->BasisPrecision, "BasisPrecision"),
     true,
-    volume)
-                                   .Total();
-  const std::uint64_t streamed =
-    spectral::EstimateStreamedMemory(n, n, m, 0, volume).Total() + StreamedFilterBytes(n);
+    volume,
+    available)
+                                   .Estimate.Total();
+  const std::uint64_t arrays = StreamedFilterBytes(n);
+  const std::uint64_t streamed = spectral::PlanStreamedMemory(n,
+    n,
+    m,
+    0,
+    volume,
+    available == 0 ? 0 : (available > arrays ? available - arrays : 1))
+                                   .Estimate.Total() +
+    arrays;
   if (this->Storage == IN_MEMORY && available != 0 && inMemory > available)
   {
     vtkErrorMacro(<< "Not enough memory for the basis of " << m << " harmonics on " << n
@@ -322,8 +332,9 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
   {
     vtkErrorMacro(<< "Not enough memory to smooth " << n << " points even with the basis "
                   << "streamed: about " << Bytes(streamed) << " needed (the sparse factor, the "
-                  << "Lanczos workspace and three bands of vectors, whatever the number of "
-                  << "harmonics), " << Bytes(available) << " available (" << from
+                  << "Lanczos workspace and three bands of vectors in bands of "
+                  << spectral::SmallestPlannedBand
+                  << " eigenpairs, the smallest, whatever the number of harmonics), " << Bytes(available) << " available (" << from
                   << "). Raise MemoryLimit to at least " << (streamed >> 20) + 1
                   << " MiB, free memory, or simplify the mesh.");
     return -1;

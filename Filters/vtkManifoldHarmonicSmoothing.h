@@ -51,7 +51,9 @@
  *   executions; STREAMED never holds it: the eigensolver hands each verified band of harmonics
  *   to the transform and filter stages, which add its contribution and let it go
  *   (spectral::StreamedFilter, Filters/Spectral/Streaming.h), so memory is the mesh, the sparse
- *   factor and a few bands' vectors, whatever m (spectral::EstimateStreamedMemory). AUTOMATIC
+ *   factor and a few bands' vectors, whatever m (spectral::EstimateStreamedMemory), in bands
+ *   smaller than the automatic ones (down to spectral::SmallestPlannedBand eigenpairs) where
+ *   those do not fit (spectral::PlanStreamedMemory; the basis warns). AUTOMATIC
  *   keeps the basis in memory when its estimate (spectral::EstimateBasisMemory, the basis
  *   filter's check) fits in MemoryLimit (or the available memory), and streams otherwise, with
  *   a warning saying so and why; GetChosenStorage tells which ran. Only what cannot run at all is

@@ -195,20 +195,23 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   const std::uint64_t n = static_cast<std::uint64_t>(numPts);
   const int m = static_cast<int>(std::min<long long>(options.NumberOfHarmonics, numPts));
   const bool volume = mesh.Tets.rows() > 0;
-  const std::uint64_t inMemory = spectral::EstimateBasisMemory(
-    n, n, m, options.Solver.BandSize, options.BytesPerValue, true, volume)
-                                   .Total();
+  const std::uint64_t available =
+    options.MemoryLimit > 0 ? options.MemoryLimit : spectral::AvailableMemory();
+  // The estimates in the bands the solve's memory plan would choose (smaller ones where the
+  // automatic band does not fit: Solver/Memory.h).
+  const int band = options.Solver.BandSize;
+  const std::uint64_t inMemory =
+    spectral::PlanBasisMemory(n, n, m, band, options.BytesPerValue, true, volume, available)
+      .Estimate.Total();
   // Into a file, the basis is streamed (never whole in memory) when that needs less memory than
   // computing it in memory and writing it: when m is above the three bands of the blocks in
   // delivery (Memory.h). A frequency window is not streamed.
   const std::uint64_t written =
-    spectral::EstimateBasisMemory(n, n, m, options.Solver.BandSize, 0, true, volume).Total();
+    spectral::PlanBasisMemory(n, n, m, band, 0, true, volume, available).Estimate.Total();
   const std::uint64_t streaming =
-    spectral::EstimateStreamedMemory(n, n, m, options.Solver.BandSize, volume).Total();
+    spectral::PlanStreamedMemory(n, n, m, band, volume, available).Estimate.Total();
   const bool streamed = options.UpperFrequency <= 0.0 && streaming <= written;
   const std::uint64_t inFile = streamed ? streaming : written;
-  const std::uint64_t available =
-    options.MemoryLimit > 0 ? options.MemoryLimit : spectral::AvailableMemory();
   const std::string path = name.empty() ? TemporaryPath() : name;
   const std::uint64_t fileBytes = n * static_cast<std::uint64_t>(m) * options.BytesPerValue;
   const spectral::BasisStorage asked =

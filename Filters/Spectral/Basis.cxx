@@ -181,6 +181,16 @@ void LeaveOutUnrepresented(BasisResult& result, const Monitor& monitor)
 }
 
 //------------------------------------------------------------------------------
+// The eigensolver's settings of a problem: the caller's, in bands of the size the memory plan
+// chose (CheckMemory; with a frequency window, once its pairs are counted).
+EigenOptions PlannedSolverOptions(const Problem& problem, const BasisOptions& options)
+{
+  EigenOptions solver = options.Solver;
+  solver.BandSize = problem.BandSize > 0 ? problem.BandSize : solver.BandSize;
+  return solver;
+}
+
+//------------------------------------------------------------------------------
 // The eigensolve stage of ComputeBasis: each connected component with the fallbacks, the m
 // smallest pairs or those of the frequency window.
 EigenResult SolveProblem(const TriangleMesh& mesh,
@@ -191,7 +201,7 @@ EigenResult SolveProblem(const TriangleMesh& mesh,
 {
   const DiscreteLaplacian& ops = problem.Operators;
   Fallbacks state;
-  state.Options = options.Solver;
+  state.Options = PlannedSolverOptions(problem, options);
   state.Options.KeepEigenvectors = !options.EigenvaluesOnly;
   state.Diameter = ops.Diameter;
   state.ConstantHarmonics = ops.ConstantHarmonics;
@@ -223,7 +233,8 @@ EigenResult SolveProblem(const TriangleMesh& mesh,
     }
     if (options.CheckMemory)
     {
-      CheckMemory(mesh, ops.Stiffness.rows(), inWindow, options);
+      const int bandSize = CheckMemory(mesh, ops.Stiffness.rows(), inWindow, options, monitor, result);
+      state.Options.BandSize = bandSize > 0 ? bandSize : state.Options.BandSize;
     }
     ReportComponentsOf(problem, inWindow, monitor, result);
   };
@@ -263,7 +274,7 @@ public:
     , VectorScale(std::pow(problem.Scale, 0.5 * problem.Dimension))
     , Harmonics(problem.Harmonics)
   {
-    this->State.Options = options.Solver;
+    this->State.Options = PlannedSolverOptions(problem, options);
     this->State.Options.KeepEigenvectors = false;
     this->State.Diameter = this->Ops.Diameter;
     this->State.ConstantHarmonics = this->Ops.ConstantHarmonics;

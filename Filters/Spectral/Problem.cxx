@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Problem.h"
 
+#include "Common/BasisFile.h" // ByteCount
 #include "Solver/Diagnostics.h"
 
 #include <cmath>
@@ -92,7 +93,7 @@ void CloudProblem(const TriangleMesh& mesh,
       Clamped(options.NumberOfHarmonics, used, "the point cloud triangulates", monitor, result);
     if (options.CheckMemory)
     {
-      CheckMemory(mesh, used, problem.Harmonics, options);
+      problem.BandSize = CheckMemory(mesh, used, problem.Harmonics, options, monitor, result);
     }
   }
 }
@@ -128,7 +129,7 @@ void MeshProblem(const TriangleMesh& mesh,
       result);
     if (options.CheckMemory)
     {
-      CheckMemory(mesh, used, problem.Harmonics, options);
+      problem.BandSize = CheckMemory(mesh, used, problem.Harmonics, options, monitor, result);
     }
   }
   problem.Scale = UnitScale(BoundingBoxDiagonal(prepared.Mesh.Vertices));
@@ -188,24 +189,44 @@ int ClampHarmonics(int requested, long long usable, const std::string& what, std
 }
 
 //------------------------------------------------------------------------------
-void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const BasisOptions& options)
+int CheckMemory(const TriangleMesh& mesh,
+  Eigen::Index used,
+  int m,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result)
 {
   const std::uint64_t n = static_cast<std::uint64_t>(mesh.Vertices.rows());
   const std::uint64_t nUsed = static_cast<std::uint64_t>(used);
-  const MemoryEstimate need = options.Sink.Harmonics
-    ? EstimateStreamedMemory(n, nUsed, m, options.Solver.BandSize, mesh.IsVolume())
-    : EstimateBasisMemory(n,
+  const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
+  const int bandSize = options.Solver.BandSize;
+  const MemoryPlan plan = options.Sink.Harmonics
+    ? PlanStreamedMemory(n, nUsed, m, bandSize, mesh.IsVolume(), available)
+    : PlanBasisMemory(n,
         nUsed,
         m,
-        options.Solver.BandSize,
+        bandSize,
         options.EigenvaluesOnly ? 0 : options.BytesPerValue,
         !options.EigenvaluesOnly,
-        mesh.IsVolume());
-  const std::uint64_t available = options.MemoryLimit > 0 ? options.MemoryLimit : AvailableMemory();
-  if (available != 0 && need.Total() > available)
+        mesh.IsVolume(),
+        available);
+  if (!plan.Fits)
   {
-    throw InsufficientMemory(need, available, m);
+    throw InsufficientMemory(plan.Estimate, available, m);
   }
+  if (plan.Shrunk)
+  {
+    Report({ "Bands of " + std::to_string(plan.BandSize) + " eigenpairs instead of " +
+             std::to_string(plan.UnplannedBandSize) + ", so that the solve fits the " +
+             ByteCount(available) + " available to it (" +
+             (options.MemoryLimit > 0 ? "MemoryLimit" : "reported by the system") +
+             "; about " + ByteCount(plan.Estimate.Total()) +
+             " needed): more bands take longer. Raise MemoryLimit or free memory for the "
+             "automatic bands." },
+      monitor,
+      result);
+  }
+  return plan.BandSize;
 }
 
 //------------------------------------------------------------------------------

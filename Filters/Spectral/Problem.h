@@ -38,6 +38,8 @@ struct Problem
   int Dimension = 2;
   /// m after the clamps; 0 with a frequency window (its inertia count decides).
   int Harmonics = 0;
+  /// The band size the memory plan chose (CheckMemory): EigenOptions::BandSize of the solve.
+  int BandSize = 0;
   /// Whether a frequency window is asked for, and its ends as eigenvalues in the operators'
   /// units ((omega Scale)^2).
   bool Window = false;
@@ -60,9 +62,19 @@ std::pair<double, double> WindowEigenvalues(double lower, double upper, double s
 /// The error of a frequency window [lower, upper) that holds no eigenvalue (`below` lie below it).
 std::string EmptyWindow(double lower, double upper, int below);
 
-/// Throws InsufficientMemory when the estimate for m harmonics on `used` of the mesh's points
-/// exceeds what is available (BasisOptions::MemoryLimit, or the system's).
-void CheckMemory(const TriangleMesh& mesh, Eigen::Index used, int m, const BasisOptions& options);
+/**
+ * The memory plan (PlanBasisMemory or PlanStreamedMemory, Solver/Memory.h) for m harmonics on `used` of the mesh's points
+ * against what is available (BasisOptions::MemoryLimit, or the system's): the band size to run
+ * with, smaller than the automatic one where that makes the solve fit (a warning says so).
+ * \return the band size for EigenOptions::BandSize (options.Solver.BandSize when unchanged).
+ * \throws InsufficientMemory when not even the smallest planned band fits.
+ */
+int CheckMemory(const TriangleMesh& mesh,
+  Eigen::Index used,
+  int m,
+  const BasisOptions& options,
+  const Monitor& monitor,
+  BasisResult& result);
 
 /**
  * The problem stage of ComputeBasis (see the file documentation). Warnings go to the monitor and

@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -297,6 +298,114 @@ void RefusedAndMemory()
 }
 
 /**
+ * Whether the harmonics B, computed in other bands than A, are A's to within what their residuals
+ * allow: for each group of eigenvalues closer than 1e-6 relative (HarmonicsDifference's groups),
+ * Davis and Kahan's bound on the sine of the angle between a computed eigenspace and the exact
+ * one, ||R||_{D^-1} / gap, for both: sqrt(size) (residualA + residualB) max(|lambda|, lambda_1)
+ * / gap (the block residual R of a group of `size` pairs at most sqrt(size) times its worst), with
+ * the relative residuals of EigenResult::MaxResidual and the gap to the nearest eigenvalue
+ * outside the group (the last group, whose gap above is unknown, is left out), plus 1e-12 for
+ * rounding. \return the largest ratio of a group's difference to its bound (pass: <= 1).
+ */
+double WorstAgainstResidualBound(const DenseMatrix& A,
+  const DenseMatrix& B,
+  const Vector& lambda,
+  const Vector& mass,
+  double residualA,
+  double residualB)
+{
+  const Eigen::Index m = lambda.size();
+  double lambda1 = 0.0;
+  for (Eigen::Index k = 0; k < m && lambda1 == 0.0; ++k)
+  {
+    lambda1 = lambda[k] > 0.0 ? lambda[k] : 0.0;
+  }
+  double worst = 0.0;
+  for (Eigen::Index k = 0; k < m;)
+  {
+    Eigen::Index end = k + 1;
+    while (
+      end < m && lambda[end] - lambda[end - 1] <= 1e-6 * std::max(std::abs(lambda[end]), 1e-300))
+    {
+      ++end;
+    }
+    if (end == m)
+    {
+      break;
+    }
+    const double gap =
+      std::min(lambda[end] - lambda[end - 1], k > 0 ? lambda[k] - lambda[k - 1] : HUGE_VAL);
+    const double bound = std::sqrt(static_cast<double>(end - k)) * (residualA + residualB) *
+        std::max(std::abs(lambda[end - 1]), lambda1) / gap +
+      1e-12;
+    const Vector groupLambda = lambda.segment(k, end - k);
+    const double difference = HarmonicsDifference(
+      A.middleCols(k, end - k), B.middleCols(k, end - k), groupLambda, mass);
+    worst = std::max(worst, difference / bound);
+    k = end;
+  }
+  return worst;
+}
+
+//------------------------------------------------------------------------------
+// A limit that the automatic bands of 100 do not fit but bands of 40 do: the memory plan
+// (PlanStreamedMemory, Solver/Memory.h) streams in bands of 40 and says so, and the basis is the one of
+// the automatic bands: eigenvalues to 1e-12 relative, harmonics within their residual bound.
+void SmallerBandsToFit()
+{
+  const TriangleMesh torus = NoisyTorusOfSize(3000, 0.1);
+  const std::uint64_t n = static_cast<std::uint64_t>(torus.Vertices.rows());
+  const int m = 300;
+  BasisOptions options;
+  options.NumberOfHarmonics = m;
+  const BasisResult memory = ComputeBasis(torus, options);
+  Received unlimitedReceived;
+  options.Sink = Collecting(unlimitedReceived, m);
+  const BasisResult unlimited = ComputeBasis(torus, options);
+  // A step of the band takes 56 to 60 bytes a point (TestMemory.PlanChoosesBands): 24 above the
+  // estimate at 40 is below the one at 41.
+  options.MemoryLimit = EstimateStreamedMemory(n, n, m, 40).Total() + 24 * n;
+  Check(EstimateStreamedMemory(n, n, m, 0).Total() > options.MemoryLimit,
+    "the automatic bands do not fit the limit");
+  Received received;
+  options.Sink = Collecting(received, m);
+  const BasisResult planned = ComputeBasis(torus, options);
+  const bool warned = std::any_of(planned.Warnings.begin(),
+    planned.Warnings.end(),
+    [](const std::string& w) { return w.find("Bands of 40 eigenpairs instead of 100") == 0; });
+  Check(warned, "a warning says the bands are of 40 eigenpairs instead of 100");
+  std::printf("    bands: %d automatic, %d planned\n", unlimited.Pairs.Bands, planned.Pairs.Bands);
+  Check(planned.Pairs.Bands >= m / 40 && planned.Pairs.Bands > unlimited.Pairs.Bands,
+    "the solve ran in more, smaller bands");
+  Check(std::all_of(received.Times.begin(), received.Times.end(), [](int t) { return t == 1; }),
+    "every harmonic delivered once");
+  const double values = EigenvalueDifference(received.Values, memory.Pairs.Eigenvalues);
+  std::printf("    eigenvalues: largest relative difference %.3e\n", values);
+  CheckBelow(values, 1e-12, "the eigenvalues of the automatic bands (relative)");
+  const double ratio = WorstAgainstResidualBound(memory.Pairs.Eigenvectors,
+    received.Harmonics,
+    memory.Pairs.Eigenvalues,
+    memory.LumpedMass,
+    memory.Pairs.MaxResidual,
+    planned.Pairs.MaxResidual);
+  std::printf("    harmonics: largest difference / residual bound %.3e\n", ratio);
+  CheckBelow(ratio, 1.0, "the harmonics of the automatic bands, within their residual bound");
+
+  // Below the estimate at the smallest planned band: refused, naming that estimate.
+  options.MemoryLimit = EstimateStreamedMemory(n, n, m, SmallestPlannedBand).Total() - 1;
+  try
+  {
+    ComputeBasis(torus, options);
+    Check(false, "below the smallest planned band: refused");
+  }
+  catch (const InsufficientMemory& e)
+  {
+    Check(e.Needed.Total() == EstimateStreamedMemory(n, n, m, SmallestPlannedBand).Total(),
+      "below the smallest planned band: refused with the estimate at that band");
+  }
+}
+
+/**
  * The streamed filter of `signals` against ForwardTransform + FilterSignal on the in-memory basis
  * (a low pass at half the highest frequency, re-injecting the rest with its mean gain), relative
  * to the largest signal value.
@@ -384,6 +493,7 @@ const Case Cases[] = {
   { "Volume", Volume },
   { "CancelledMidStream", CancelledMidStream },
   { "RefusedAndMemory", RefusedAndMemory },
+  { "SmallerBandsToFit", SmallerBandsToFit },
   { "FilterMatchesInMemory", FilterMatchesInMemory },
 };
 } // namespace

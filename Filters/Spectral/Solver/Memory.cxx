@@ -31,6 +31,42 @@ std::uint64_t MemAvailableFromProc()
   }
   return 0;
 }
+
+//------------------------------------------------------------------------------
+// The plan of a computation whose estimate at band size k is estimate(k) (a template, not a
+// std::function: planning allocates nothing, and the heap a solve starts from stays as it was).
+template <typename Estimate>
+MemoryPlan PlanMemory(int m, int bandSize, std::uint64_t available, const Estimate& estimate)
+{
+  MemoryPlan plan;
+  plan.BandSize = bandSize;
+  plan.UnplannedBandSize = EffectiveBandSize(m, bandSize);
+  plan.Estimate = estimate(bandSize);
+  if (available == 0 || plan.Estimate.Total() <= available)
+  {
+    return plan;
+  }
+  if (bandSize <= 0)
+  {
+    for (int k = plan.UnplannedBandSize - 1; k >= SmallestPlannedBand; --k)
+    {
+      const MemoryEstimate smaller = estimate(k);
+      if (smaller.Total() <= available)
+      {
+        plan.BandSize = k;
+        plan.Shrunk = true;
+        plan.Estimate = smaller;
+        return plan;
+      }
+    }
+    if (plan.UnplannedBandSize > SmallestPlannedBand)
+    {
+      plan.Estimate = estimate(SmallestPlannedBand);
+    }
+  }
+  plan.Fits = false;
+  return plan;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -48,10 +84,11 @@ MemoryEstimate EstimateBasisMemory(std::uint64_t n,
   estimate.Basis = n * harmonics * static_cast<std::uint64_t>(bytesPerValue);
   estimate.Eigenvectors =
     nUsed * (keepEigenvectors ? harmonics : std::min(harmonics, 3 * band)) * 8;
-  estimate.Krylov = nUsed * (3 * band + 100) * 8;
+  estimate.Krylov = nUsed * (9 * band / 2 + 100) * 8;
   const double perRow =
     volume ? 11.0 * std::cbrt(static_cast<double>(nUsed)) : 80.0; // see Memory.h
   estimate.Factor = static_cast<std::uint64_t>(static_cast<double>(nUsed) * perRow * 12.0);
+  estimate.Overhead = std::uint64_t(16) << 20;
   return estimate;
 }
 
@@ -67,6 +104,37 @@ MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
     static_cast<std::uint64_t>(std::max(m, 0)), static_cast<std::uint64_t>(StreamedBlockColumns));
   estimate.Basis = 2 * n * handed * 8;
   return estimate;
+}
+
+//------------------------------------------------------------------------------
+MemoryPlan PlanBasisMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  int bytesPerValue,
+  bool keepEigenvectors,
+  bool volume,
+  std::uint64_t available)
+{
+  return PlanMemory(m,
+    bandSize,
+    available,
+    [=](int k)
+    { return EstimateBasisMemory(n, nUsed, m, k, bytesPerValue, keepEigenvectors, volume); });
+}
+
+//------------------------------------------------------------------------------
+MemoryPlan PlanStreamedMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  bool volume,
+  std::uint64_t available)
+{
+  return PlanMemory(m,
+    bandSize,
+    available,
+    [=](int k) { return EstimateStreamedMemory(n, nUsed, m, k, volume); });
 }
 
 //------------------------------------------------------------------------------

@@ -14,23 +14,27 @@
  *   + nUsed m 8                 the solver's eigenvector block (always double); a spectrum
  *                               alone (no eigenvectors kept, EigenOptions::KeepEigenvectors)
  *                               needs nUsed min(m, 3 k) 8: the vectors its seams still need
- *   + nUsed (3 k + 100) 8       the Lanczos workspace of a band of k pairs: its Krylov basis,
- *                               block products and Ritz vectors
+ *   + nUsed (9 k / 2 + 100) 8   the Lanczos workspace of a band of k pairs: its Krylov basis
+ *                               (3 k and three blocks), the images of its Ritz vectors and of
+ *                               the joint span of a merge (up to 3 k / 2), block products, and
+ *                               the mesh and sparse operators (about 50 values a point)
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
  *                               (an 8-byte value and a 4-byte row index); a volume's factor
  *                               fills far more, and more with its size: 11 nUsed^(1/3) a row
  *                               (401 measured on the 50,653-point tetrahedral ball of
  *                               `bench/ManifoldHarmonicsBench --volume --case 50000:200`)
+ *   + 16 MiB                    the process's own: the BLAS's buffers and the threads' stacks
+ *                               that a solve touches first
  *
  * with k = EffectiveBandSize(m, bandSize), the eigensolver's band size (the band policy is
  * documented once, in Bands.h; a band size set by hand above SingleBandSize(m) makes the
  * estimate high, since no band asks for more).
- * It is an estimate, not a bound: it leaves out the mesh and the sparse operators, which are
- * small beside these terms (a few hundred bytes a point), and the fill-in of the factor depends
- * on the mesh. On the 100,045-point torus of bench/ManifoldHarmonicsBench with m = 500 it gives
- * 1.22e9 bytes; the benchmark (`--case 100000:500`, no VTK output) measured a peak resident
- * size of 905 MiB (0.95e9 bytes).
+ * It is an estimate, not a bound (the fill-in of the factor depends on the mesh), meant to stay
+ * above what a solve takes: a streamed smoothing of a 10,142-point sphere with 800 harmonics
+ * (TestManifoldHarmonicSmoothing.MemoryLimitStreams, heaptrack) held a Krylov basis of 3.3 k
+ * columns, the images of 1.3 k, the seams' 3 k and two delivery blocks, and its factor 3.5 MB
+ * (the estimate's 10 MB: a sphere fills less than 80 a row).
  *
  * A streamed basis (BasisSink, Basis.h) keeps no output basis and runs the solver as for a
  * spectrum alone; its Basis term is instead the blocks in delivery, 2 n min(m,
@@ -39,6 +43,12 @@
  * m once m > 3 k, below a double in-memory estimate once m > 2 StreamedBlockColumns (128).
  * A caller that accumulates what it receives adds its own arrays (vtkManifoldHarmonicSmoothing:
  * the signals' sums).
+ *
+ * Memory planning (PlanBasisMemory, PlanStreamedMemory) chooses instead of refusing where it can: when the estimate at
+ * the automatic band size does not fit, smaller bands (down to SmallestPlannedBand pairs) shrink
+ * the Krylov term and the vectors kept for the seams; ComputeBasis runs with the band size the
+ * plan chose and says so (a warning), the filters choose their storage from the planned
+ * estimates.
  *
  * Used by vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing; tested by
  * Testing/Core/TestMemory.cxx.
@@ -59,15 +69,19 @@ struct MemoryEstimate
   std::uint64_t Basis = 0;
   /// The eigensolver's own block of eigenvectors: nUsed m doubles.
   std::uint64_t Eigenvectors = 0;
-  /// The Lanczos workspace of one band: nUsed (3 k + 100) doubles.
+  /// The Lanczos workspace of one band, the mesh and the operators: nUsed (9 k / 2 + 100)
+  /// doubles.
   std::uint64_t Krylov = 0;
   /// The sparse factor: nUsed 80 (11 nUsed^(1/3) for a volume) (value, index) pairs of 12 bytes.
   std::uint64_t Factor = 0;
 
-  /// The sum of the four terms.
+  /// The process's own memory that a solve touches first (BLAS buffers, thread stacks).
+  std::uint64_t Overhead = 0;
+
+  /// The sum of the five terms.
   std::uint64_t Total() const
   {
-    return this->Basis + this->Eigenvectors + this->Krylov + this->Factor;
+    return this->Basis + this->Eigenvectors + this->Krylov + this->Factor + this->Overhead;
   }
 };
 
@@ -105,6 +119,53 @@ MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
   int m,
   int bandSize,
   bool volume = false);
+
+/// The fewest eigenpairs a band is given when the plan makes bands smaller to fit
+/// (PlanBasisMemory, PlanStreamedMemory): below it each band's factorization and block iteration cost more than its
+/// vectors save.
+constexpr int SmallestPlannedBand = 20;
+
+/// How a computation runs in the memory it has: its band size and its estimate there.
+struct MemoryPlan
+{
+  /// Eigenpairs per band to run with (EigenOptions::BandSize): the one asked for (0 for the
+  /// automatic band) or, when smaller bands were needed to fit (Shrunk), the largest that fits.
+  int BandSize = 0;
+  /// The band the computation would have run with unplanned (EffectiveBandSize).
+  int UnplannedBandSize = 0;
+  /// Whether BandSize is smaller than the automatic band, to fit.
+  bool Shrunk = false;
+  /// The estimate at BandSize; when nothing fits, at SmallestPlannedBand: the least it needs.
+  MemoryEstimate Estimate;
+  /// Whether the estimate fits what is available (true when that is unknown).
+  bool Fits = true;
+};
+
+/**
+ * The memory plan of a computation (PlanBasisMemory, PlanStreamedMemory): with the band size
+ * asked for when it is set (bandSize > 0) or when the automatic one fits `available`;
+ * otherwise with the largest band from the automatic one down to SmallestPlannedBand whose
+ * estimate fits (the Krylov workspace, and the vectors a spectrum alone or a stream keeps for
+ * its seams, grow with the band). Nothing fitting gives Fits false and the estimate at
+ * SmallestPlannedBand. `available` 0 (unknown) fits everything.
+ */
+/// The memory plan of EstimateBasisMemory (its arguments but the band size).
+MemoryPlan PlanBasisMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  int bytesPerValue,
+  bool keepEigenvectors,
+  bool volume,
+  std::uint64_t available);
+
+/// The memory plan of EstimateStreamedMemory (its arguments but the band size).
+MemoryPlan PlanStreamedMemory(std::uint64_t n,
+  std::uint64_t nUsed,
+  int m,
+  int bandSize,
+  bool volume,
+  std::uint64_t available);
 
 /**
  * The memory available to a new computation, in bytes: MemAvailable of /proc/meminfo on Linux

@@ -24,6 +24,7 @@
 #include "vtkTable.h"
 
 #include "ManifoldHarmonicsTestUtilities.h"
+#include "Spectral/Solver/Memory.h" // EstimateBasisMemory, SmallestPlannedBand
 
 #include <array>
 #include <cmath>
@@ -766,6 +767,57 @@ bool FailsWith(vtkFunctionalMap* map, const std::string& expected)
 }
 
 //------------------------------------------------------------------------------
+// MemoryLimit covers both internal bases: the target's, computed second, gets what the source's
+// basis leaves (its harmonics and mass). A sheet mapped to a copy of itself under a limit that
+// fits one basis in memory but not two: the target's basis goes to a file (Storage Automatic of
+// the basis, with its warning), and the map is the one without a limit. A limit below what even
+// a file needs is refused, naming MemoryLimit.
+bool TestMemoryLimit()
+{
+  const Sheet source = Target(), target = Target();
+  const std::uint64_t n = static_cast<std::uint64_t>(target.Mesh->GetNumberOfPoints());
+  const std::uint64_t least =
+    spectral::EstimateBasisMemory(n, n, Harmonics, spectral::SmallestPlannedBand, 8).Total();
+  const std::uint64_t held = n * Harmonics * 8 + n * 8;
+  auto free = MapOf(source.Mesh, target.Mesh);
+  free->Update();
+  vtkIdTypeArray* unlimited = PointIds(free);
+
+  auto map = MapOf(source.Mesh, target.Mesh);
+  map->SetMemoryLimit(static_cast<double>(least + held / 2) / 1048576.0);
+  bool ok = true;
+  {
+    ManifoldHarmonicsTest::Messages messages(map);
+    map->Update();
+    vtkIdTypeArray* limited = PointIds(map);
+    ok &= Check(!messages->GetError() &&
+        messages->GetWarningMessage().find("Storage Automatic: the basis is kept in a file") !=
+          std::string::npos,
+      "one basis in memory, the other in a file, and a warning says so: " +
+        messages->GetWarningMessage());
+    int same = 0;
+    for (vtkIdType j = 0; limited && unlimited && j < static_cast<vtkIdType>(n); ++j)
+    {
+      same += limited->GetValue(j) == unlimited->GetValue(j) ? 1 : 0;
+    }
+    std::cout << "under the limit: " << same << " of " << n << " points mapped as without it"
+              << std::endl;
+    ok &= Check(limited && unlimited && same >= static_cast<int>(n) * 99 / 100,
+      "the same point map as without a limit (but for near ties)");
+  }
+  map->SetMemoryLimit(1.0);
+  ManifoldHarmonicsTest::Messages refused(map);
+  const bool succeeded = map->GetExecutive()->Update() != 0;
+  const std::string text = refused->GetErrorMessage();
+  ok &= Check(!succeeded && map->GetOutput()->GetNumberOfPoints() == 0 &&
+      text.find("the basis of the source (input port 1, Source) failed: ") != std::string::npos &&
+      text.find("Not enough memory") != std::string::npos &&
+      text.find("available (MemoryLimit)") != std::string::npos,
+    "1 MiB is refused, naming MemoryLimit: " + text);
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // Errors: a missing source, landmark lists of different lengths or out of range, an integer
 // array through the functional map, an array on both lists or not on the source, a size above
 // the bases, an internal basis that fails (its error becomes the filter's, naming the input).
@@ -872,6 +924,7 @@ int TestFunctionalMap(int argc, char* argv[])
       { "WeldedSeams", TestWeldedSeams },
       { "DifferentSizes", TestDifferentSizes },
       { "IslandLeftOut", TestIslandLeftOut },
+      { "MemoryLimit", TestMemoryLimit },
       { "NamesAndTypes", TestNamesAndTypes },
       { "GivenBasisAndReuse", TestGivenBasisAndReuse },
       { "Table", TestTable },
