@@ -343,9 +343,8 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   }
   if (self->GetBandSize() > 0)
   {
-    message << ", set BandSize to 0 (automatic: bands as small as "
-            << spectral::SmallestPlannedBand << " eigenpairs where the memory needs it; now "
-            << self->GetBandSize() << ")";
+    message << ", set BandSize to 0 (automatic: bands as small as " << spectral::SmallestPlannedBand
+            << " eigenpairs where the memory needs it; now " << self->GetBandSize() << ")";
   }
   message << (limited ? " or raise MemoryLimit." : " or free memory.");
   if (self->GetBandSize() <= 0 && spectral::EffectiveBandSize(m, 0) > spectral::SmallestPlannedBand)

@@ -330,8 +330,8 @@ public:
    * where the automatic bands (BandSize 0) do not fit, the solve runs in smaller ones, down to
    * 20 eigenpairs (spectral::SmallestPlannedBand), and warns; and when the solve alone still
    * exceeds it the filter reports an error (how much is needed and available; fewer harmonics,
-   * BasisPrecision FLOAT, BandSize 0) and produces an empty output. Set a limit to keep room for other
-   * work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
+   * BasisPrecision FLOAT, BandSize 0) and produces an empty output. Set a limit to keep room for
+   * other work, or to test the check. Range [0, VTK_DOUBLE_MAX]. Default is 0.
    */
   vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryLimit, double);

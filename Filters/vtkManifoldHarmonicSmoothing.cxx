@@ -305,13 +305,10 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
     available)
                                    .Estimate.Total();
   const std::uint64_t arrays = StreamedFilterBytes(n);
-  const std::uint64_t streamed = spectral::PlanStreamedMemory(n,
-    n,
-    m,
-    0,
-    volume,
-    available == 0 ? 0 : (available > arrays ? available - arrays : 1))
-                                   .Estimate.Total() +
+  const std::uint64_t streamed =
+    spectral::PlanStreamedMemory(
+      n, n, m, 0, volume, available == 0 ? 0 : (available > arrays ? available - arrays : 1))
+      .Estimate.Total() +
     arrays;
   if (this->Storage == IN_MEMORY && available != 0 && inMemory > available)
   {
@@ -334,7 +331,8 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
                   << "streamed: about " << Bytes(streamed) << " needed (the sparse factor, the "
                   << "Lanczos workspace and three bands of vectors in bands of "
                   << spectral::SmallestPlannedBand
-                  << " eigenpairs, the smallest, whatever the number of harmonics), " << Bytes(available) << " available (" << from
+                  << " eigenpairs, the smallest, whatever the number of harmonics), "
+                  << Bytes(available) << " available (" << from
                   << "). Raise MemoryLimit to at least " << (streamed >> 20) + 1
                   << " MiB, free memory, or simplify the mesh.");
     return -1;

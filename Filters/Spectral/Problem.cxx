@@ -219,8 +219,8 @@ int CheckMemory(const TriangleMesh& mesh,
     Report({ "Bands of " + std::to_string(plan.BandSize) + " eigenpairs instead of " +
              std::to_string(plan.UnplannedBandSize) + ", so that the solve fits the " +
              ByteCount(available) + " available to it (" +
-             (options.MemoryLimit > 0 ? "MemoryLimit" : "reported by the system") +
-             "; about " + ByteCount(plan.Estimate.Total()) +
+             (options.MemoryLimit > 0 ? "MemoryLimit" : "reported by the system") + "; about " +
+             ByteCount(plan.Estimate.Total()) +
              " needed): more bands take longer. Raise MemoryLimit or free memory for the "
              "automatic bands." },
       monitor,

@@ -63,9 +63,11 @@ std::pair<double, double> WindowEigenvalues(double lower, double upper, double s
 std::string EmptyWindow(double lower, double upper, int below);
 
 /**
- * The memory plan (PlanBasisMemory or PlanStreamedMemory, Solver/Memory.h) for m harmonics on `used` of the mesh's points
- * against what is available (BasisOptions::MemoryLimit, or the system's): the band size to run
- * with, smaller than the automatic one where that makes the solve fit (a warning says so).
+ * The memory plan (PlanBasisMemory or PlanStreamedMemory, Solver/Memory.h) for m harmonics on
+ * `used` of the mesh's points against what is available (BasisOptions::MemoryLimit, or the
+ * system's): the band size to run with, smaller than the automatic one where that makes the solve
+ * fit (a warning says so).
+ *
  * \return the band size for EigenOptions::BandSize (options.Solver.BandSize when unchanged).
  * \throws InsufficientMemory when not even the smallest planned band fits.
  */

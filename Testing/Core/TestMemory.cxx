@@ -72,8 +72,7 @@ void PlanChoosesBands()
 
   plan = PlanStreamedMemory(n, n, 1000, 0, false, streamed(40) + 50 * n);
   Check(plan.Fits && plan.Shrunk && plan.BandSize == 40 && plan.Estimate.Total() == streamed(40),
-    "between the estimates at 40 and 41: bands of 40 (got " + std::to_string(plan.BandSize) +
-      ")");
+    "between the estimates at 40 and 41: bands of 40 (got " + std::to_string(plan.BandSize) + ")");
   plan = PlanStreamedMemory(n, n, 1000, 0, false, streamed(100) - 1);
   Check(plan.Fits && plan.Shrunk && plan.BandSize == 99, "one byte short of 100: bands of 99");
 

@@ -339,8 +339,8 @@ double WorstAgainstResidualBound(const DenseMatrix& A,
         std::max(std::abs(lambda[end - 1]), lambda1) / gap +
       1e-12;
     const Vector groupLambda = lambda.segment(k, end - k);
-    const double difference = HarmonicsDifference(
-      A.middleCols(k, end - k), B.middleCols(k, end - k), groupLambda, mass);
+    const double difference =
+      HarmonicsDifference(A.middleCols(k, end - k), B.middleCols(k, end - k), groupLambda, mass);
     worst = std::max(worst, difference / bound);
     k = end;
   }
@@ -349,8 +349,8 @@ double WorstAgainstResidualBound(const DenseMatrix& A,
 
 //------------------------------------------------------------------------------
 // A limit that the automatic bands of 100 do not fit but bands of 40 do: the memory plan
-// (PlanStreamedMemory, Solver/Memory.h) streams in bands of 40 and says so, and the basis is the one of
-// the automatic bands: eigenvalues to 1e-12 relative, harmonics within their residual bound.
+// (PlanStreamedMemory, Solver/Memory.h) streams in bands of 40 and says so, and the basis is the
+// one of the automatic bands: eigenvalues to 1e-12 relative, harmonics within their residual bound.
 void SmallerBandsToFit()
 {
   const TriangleMesh torus = NoisyTorusOfSize(3000, 0.1);

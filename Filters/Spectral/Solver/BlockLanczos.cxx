@@ -517,7 +517,8 @@ int BlockLanczosBand::Verified(const Eigen::Ref<const DenseMatrix>& X,
   backward.Tolerance = 0.5 * this->Options.BackwardErrorTolerance;
   const SparseMatrix absL =
     SparseMatrix(this->Factor.ShiftedMatrix() + this->Sigma * this->M.Matrix).cwiseAbs();
-  const SparseMatrix absM = this->M.Identity ? SparseMatrix() : SparseMatrix(this->M.Matrix.cwiseAbs());
+  const SparseMatrix absM =
+    this->M.Identity ? SparseMatrix() : SparseMatrix(this->M.Matrix.cwiseAbs());
   backward.AbsL = &absL;
   backward.AbsM = this->M.Identity ? nullptr : &absM;
   backward.X = &X;

@@ -452,11 +452,10 @@ EigenResult SolveByBands(const SparseMatrix& L,
   const DenseMatrix* deflation = options.ConstantNullSpace ? &nulls : nullptr;
   if (!IsPositiveDiagonal(M))
   {
-    const detail::RetirePairs retire =
-      [&](const Vector& values,
-        const Eigen::Ref<const DenseMatrix>& vectors,
-        int first,
-        EigenResult& result)
+    const detail::RetirePairs retire = [&](const Vector& values,
+                                         const Eigen::Ref<const DenseMatrix>& vectors,
+                                         int first,
+                                         EigenResult& result)
     { RetireInColumns(L, M, options, Vector(), values, vectors, first, result); };
     return detail::BandEigenpairs(
       L, detail::MassMatrix{ M, false, deflation }, area, options, monitor, retire);
@@ -476,11 +475,10 @@ EigenResult SolveByBands(const SparseMatrix& L,
   identity.setIdentity();
   // Pairs let go without options.KeepEigenvectors are verified as harmonics h = D^-1/2 y, on
   // the caller's pencil, as the final check verifies the pairs that are kept.
-  const detail::RetirePairs retire =
-    [&](const Vector& values,
-        const Eigen::Ref<const DenseMatrix>& vectors,
-        int first,
-        EigenResult& result)
+  const detail::RetirePairs retire = [&](const Vector& values,
+                                       const Eigen::Ref<const DenseMatrix>& vectors,
+                                       int first,
+                                       EigenResult& result)
   { RetireInColumns(L, M, options, scaling, values, vectors, first, result); };
   EigenResult result = detail::BandEigenpairs(
     S, detail::MassMatrix{ identity, true, deflation }, area, options, monitor, retire);

@@ -35,7 +35,7 @@ std::uint64_t MemAvailableFromProc()
 //------------------------------------------------------------------------------
 // The plan of a computation whose estimate at band size k is estimate(k) (a template, not a
 // std::function: planning allocates nothing, and the heap a solve starts from stays as it was).
-template <typename Estimate>
+template<typename Estimate>
 MemoryPlan PlanMemory(int m, int bandSize, std::uint64_t available, const Estimate& estimate)
 {
   MemoryPlan plan;
@@ -131,10 +131,8 @@ MemoryPlan PlanStreamedMemory(std::uint64_t n,
   bool volume,
   std::uint64_t available)
 {
-  return PlanMemory(m,
-    bandSize,
-    available,
-    [=](int k) { return EstimateStreamedMemory(n, nUsed, m, k, volume); });
+  return PlanMemory(
+    m, bandSize, available, [=](int k) { return EstimateStreamedMemory(n, nUsed, m, k, volume); });
 }
 
 //------------------------------------------------------------------------------

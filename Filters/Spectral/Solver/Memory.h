@@ -44,11 +44,11 @@
  * A caller that accumulates what it receives adds its own arrays (vtkManifoldHarmonicSmoothing:
  * the signals' sums).
  *
- * Memory planning (PlanBasisMemory, PlanStreamedMemory) chooses instead of refusing where it can: when the estimate at
- * the automatic band size does not fit, smaller bands (down to SmallestPlannedBand pairs) shrink
- * the Krylov term and the vectors kept for the seams; ComputeBasis runs with the band size the
- * plan chose and says so (a warning), the filters choose their storage from the planned
- * estimates.
+ * Memory planning (PlanBasisMemory, PlanStreamedMemory) chooses instead of refusing where it can:
+ * when the estimate at the automatic band size does not fit, smaller bands (down to
+ * SmallestPlannedBand pairs) shrink the Krylov term and the vectors kept for the seams;
+ * ComputeBasis runs with the band size the plan chose and says so (a warning), the filters choose
+ * their storage from the planned estimates.
  *
  * Used by vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing; tested by
  * Testing/Core/TestMemory.cxx.
@@ -121,8 +121,8 @@ MemoryEstimate EstimateStreamedMemory(std::uint64_t n,
   bool volume = false);
 
 /// The fewest eigenpairs a band is given when the plan makes bands smaller to fit
-/// (PlanBasisMemory, PlanStreamedMemory): below it each band's factorization and block iteration cost more than its
-/// vectors save.
+/// (PlanBasisMemory, PlanStreamedMemory): below it each band's factorization and block iteration
+/// cost more than its vectors save.
 constexpr int SmallestPlannedBand = 20;
 
 /// How a computation runs in the memory it has: its band size and its estimate there.

@@ -39,7 +39,10 @@ namespace
 {
 //------------------------------------------------------------------------------
 // The componentwise backward error of pair k of a BackwardScale, given its residual r.
-double BackwardErrorOfColumn(const Vector& r, const BackwardScale& backward, Eigen::Index k, double lambda)
+double BackwardErrorOfColumn(const Vector& r,
+  const BackwardScale& backward,
+  Eigen::Index k,
+  double lambda)
 {
   const Vector absX = backward.X->col(k).cwiseAbs();
   const Vector absLx = *backward.AbsL * absX;
