@@ -144,6 +144,16 @@ std::uint64_t StreamedFilterBytes(std::uint64_t n)
 }
 
 //------------------------------------------------------------------------------
+// The memory a streamed solve of n points may take, in bytes: `available` (MemoryLimit or the
+// system's) less the filter's own arrays, at least one byte (0 would mean the system's); 0 when
+// nothing is known.
+std::uint64_t StreamedSolveBytes(std::uint64_t available, std::uint64_t n)
+{
+  const std::uint64_t arrays = StreamedFilterBytes(n);
+  return available == 0 ? 0 : (available > arrays ? available - arrays : 1);
+}
+
+//------------------------------------------------------------------------------
 // The low pass at `fraction` of the highest computed frequency, with re-injection: the new
 // coordinates of the points of `withBasis`.
 spectral::RowMatrix LowPass(vtkManifoldHarmonicSmoothing* self,
@@ -292,8 +302,8 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
   const std::uint64_t limit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(this->MemoryLimit);
   const std::uint64_t available = limit > 0 ? limit : spectral::AvailableMemory();
   const char* from = limit > 0 ? "MemoryLimit" : "reported by the system";
-  // In the bands the solve's memory plan would choose (Solver/Memory.h); streamed, the core's
-  // share leaves room for the filter's own arrays (as ExecuteStreamed gives it).
+  // In the bands the solve's memory plan would choose (Solver/Memory.h); streamed, in the share
+  // ExecuteStreamed gives the solve (StreamedSolveBytes).
   const std::uint64_t inMemory = spectral::PlanBasisMemory(n,
     n,
     m,
@@ -304,12 +314,10 @@ int vtkManifoldHarmonicSmoothing::ChooseStorage(vtkPointSet* input)
     volume,
     available)
                                    .Estimate.Total();
-  const std::uint64_t arrays = StreamedFilterBytes(n);
   const std::uint64_t streamed =
-    spectral::PlanStreamedMemory(
-      n, n, m, 0, volume, available == 0 ? 0 : (available > arrays ? available - arrays : 1))
+    spectral::PlanStreamedMemory(n, n, m, 0, volume, StreamedSolveBytes(available, n))
       .Estimate.Total() +
-    arrays;
+    StreamedFilterBytes(n);
   if (this->Storage == IN_MEMORY && available != 0 && inMemory > available)
   {
     vtkErrorMacro(<< "Not enough memory for the basis of " << m << " harmonics on " << n
@@ -363,10 +371,9 @@ int vtkManifoldHarmonicSmoothing::ExecuteStreamed(vtkPointSet* input, vtkPointSe
   // The core's limit leaves room for the filter's own arrays (StreamedFilterBytes).
   const std::uint64_t limit = vtkManifoldHarmonicsParameters::MemoryLimitBytes(this->MemoryLimit);
   const std::uint64_t available = limit > 0 ? limit : spectral::AvailableMemory();
-  const std::uint64_t arrays =
-    StreamedFilterBytes(static_cast<std::uint64_t>(input->GetNumberOfPoints()));
-  this->ConfigureBasis(
-    available > arrays ? static_cast<double>(available - arrays) / 1048576.0 : 0.0);
+  this->ConfigureBasis(static_cast<double>(StreamedSolveBytes(
+                         available, static_cast<std::uint64_t>(input->GetNumberOfPoints()))) /
+    1048576.0);
   this->SetProgressText("Basis");
   vtkManifoldHarmonicsArrays::MeshFiguresCache figures;
   const double nyquist =

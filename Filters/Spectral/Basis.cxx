@@ -233,9 +233,8 @@ EigenResult SolveProblem(const TriangleMesh& mesh,
     }
     if (options.CheckMemory)
     {
-      const int bandSize =
+      state.Options.BandSize =
         CheckMemory(mesh, ops.Stiffness.rows(), inWindow, options, monitor, result);
-      state.Options.BandSize = bandSize > 0 ? bandSize : state.Options.BandSize;
     }
     ReportComponentsOf(problem, inWindow, monitor, result);
   };

@@ -67,6 +67,18 @@ BasisSink Collecting(Received& received, int m)
   return sink;
 }
 
+/// The end of the group of eigenvalues from k on: those closer than 1e-6 relative in a chain.
+Eigen::Index GroupEnd(const Vector& lambda, Eigen::Index k)
+{
+  Eigen::Index end = k + 1;
+  while (end < lambda.size() &&
+    lambda[end] - lambda[end - 1] <= 1e-6 * std::max(std::abs(lambda[end]), 1e-300))
+  {
+    ++end;
+  }
+  return end;
+}
+
 /**
  * The largest distance between the streamed and the in-memory harmonics, by groups of
  * eigenvalues closer than 1e-6 relative (a cluster's eigenspace is compared, not its vectors):
@@ -84,12 +96,7 @@ double HarmonicsDifference(const DenseMatrix& A,
   const Eigen::Index m = lambda.size();
   for (Eigen::Index k = 0; k < m;)
   {
-    Eigen::Index end = k + 1;
-    while (
-      end < m && lambda[end] - lambda[end - 1] <= 1e-6 * std::max(std::abs(lambda[end]), 1e-300))
-    {
-      ++end;
-    }
+    const Eigen::Index end = GroupEnd(lambda, k);
     const Eigen::Index size = end - k;
     if (size == 1)
     {
@@ -299,7 +306,7 @@ void RefusedAndMemory()
 
 /**
  * Whether the harmonics B, computed in other bands than A, are A's to within what their residuals
- * allow: for each group of eigenvalues closer than 1e-6 relative (HarmonicsDifference's groups),
+ * allow: for each group of eigenvalues closer than 1e-6 relative (GroupEnd),
  * Davis and Kahan's bound on the sine of the angle between a computed eigenspace and the exact
  * one, ||R||_{D^-1} / gap, for both: sqrt(size) (residualA + residualB) max(|lambda|, lambda_1)
  * / gap (the block residual R of a group of `size` pairs at most sqrt(size) times its worst), with
@@ -323,12 +330,7 @@ double WorstAgainstResidualBound(const DenseMatrix& A,
   double worst = 0.0;
   for (Eigen::Index k = 0; k < m;)
   {
-    Eigen::Index end = k + 1;
-    while (
-      end < m && lambda[end] - lambda[end - 1] <= 1e-6 * std::max(std::abs(lambda[end]), 1e-300))
-    {
-      ++end;
-    }
+    const Eigen::Index end = GroupEnd(lambda, k);
     if (end == m)
     {
       break;

@@ -142,14 +142,13 @@ struct MemoryPlan
 };
 
 /**
- * The memory plan of a computation (PlanBasisMemory, PlanStreamedMemory): with the band size
+ * The memory plan of EstimateBasisMemory (its arguments but the band size): with the band size
  * asked for when it is set (bandSize > 0) or when the automatic one fits `available`;
  * otherwise with the largest band from the automatic one down to SmallestPlannedBand whose
  * estimate fits (the Krylov workspace, and the vectors a spectrum alone or a stream keeps for
  * its seams, grow with the band). Nothing fitting gives Fits false and the estimate at
  * SmallestPlannedBand. `available` 0 (unknown) fits everything.
  */
-/// The memory plan of EstimateBasisMemory (its arguments but the band size).
 MemoryPlan PlanBasisMemory(std::uint64_t n,
   std::uint64_t nUsed,
   int m,
@@ -159,7 +158,8 @@ MemoryPlan PlanBasisMemory(std::uint64_t n,
   bool volume,
   std::uint64_t available);
 
-/// The memory plan of EstimateStreamedMemory (its arguments but the band size).
+/// The memory plan of EstimateStreamedMemory (its arguments but the band size), by the rule of
+/// PlanBasisMemory.
 MemoryPlan PlanStreamedMemory(std::uint64_t n,
   std::uint64_t nUsed,
   int m,
