@@ -145,15 +145,17 @@ std::string FixedHeader(const BasisFileHeader& header, const std::string& variab
 
 //------------------------------------------------------------------------------
 void WriteAll(int descriptor,
-  const std::string& bytes,
+  const void* data,
+  std::uint64_t size,
   std::uint64_t offset,
   const std::string& path)
 {
-  std::size_t done = 0;
-  while (done < bytes.size())
+  const char* bytes = static_cast<const char*>(data);
+  std::uint64_t done = 0;
+  while (done < size)
   {
-    const ssize_t wrote = pwrite(
-      descriptor, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    const ssize_t wrote =
+      pwrite(descriptor, bytes + done, size - done, static_cast<off_t>(offset + done));
     if (wrote < 0 && errno == EINTR)
     {
       continue;
@@ -164,6 +166,15 @@ void WriteAll(int descriptor,
     }
     done += static_cast<std::size_t>(wrote);
   }
+}
+
+//------------------------------------------------------------------------------
+void WriteAll(int descriptor,
+  const std::string& bytes,
+  std::uint64_t offset,
+  const std::string& path)
+{
+  WriteAll(descriptor, bytes.data(), bytes.size(), offset, path);
 }
 
 //------------------------------------------------------------------------------
@@ -215,6 +226,48 @@ std::map<std::string, std::string> OptionLines(const std::string& text)
     lines[line.substr(0, equal)] = equal == std::string::npos ? "" : line.substr(equal + 1);
   }
   return lines;
+}
+//------------------------------------------------------------------------------
+// Gathers columns of a tile: out (tileRows x count, column-major) takes value (sourceOf[r0 + r],
+// k) of `values` (leading dimension `rows`), 0 where sourceOf is negative.
+template<typename T>
+void GatherTile(T* out,
+  const double* values,
+  std::uint64_t rows,
+  std::uint64_t count,
+  const int* sourceOf,
+  std::uint64_t tileRows)
+{
+  for (std::uint64_t k = 0; k < count; ++k)
+  {
+    const double* column = values + k * rows;
+    T* to = out + k * tileRows;
+    for (std::uint64_t r = 0; r < tileRows; ++r)
+    {
+      to[r] = sourceOf[r] >= 0 ? static_cast<T>(column[sourceOf[r]]) : T(0);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// Transposes a tile: `rowMajor` (rows x m) from `columnMajor` (leading dimension rows), in
+// blocks of rows so that both stay in the cache.
+template<typename T>
+void TransposeTile(T* rowMajor, const T* columnMajor, std::uint64_t rows, std::uint64_t m)
+{
+  const std::uint64_t block = 64;
+  for (std::uint64_t r0 = 0; r0 < rows; r0 += block)
+  {
+    const std::uint64_t r1 = std::min(rows, r0 + block);
+    for (std::uint64_t c = 0; c < m; ++c)
+    {
+      const T* from = columnMajor + c * rows;
+      for (std::uint64_t r = r0; r < r1; ++r)
+      {
+        rowMajor[r * m + c] = from[r];
+      }
+    }
+  }
 }
 } // namespace
 
@@ -379,7 +432,15 @@ BasisFileHeader ReadBasisFileHeader(const std::string& path)
 }
 
 //------------------------------------------------------------------------------
-BasisFileWriter::BasisFileWriter(const std::string& path, const BasisFileHeader& header)
+std::uint64_t BasisFileDiskBytes(std::uint64_t n, std::uint64_t m, std::uint32_t b)
+{
+  return 2 * n * m * b;
+}
+
+//------------------------------------------------------------------------------
+BasisFileWriter::BasisFileWriter(const std::string& path,
+  const BasisFileHeader& header,
+  std::uint64_t tileBytes)
   : Path(path)
   , Partial(path + ".partial")
   , Header(header)
@@ -391,6 +452,9 @@ BasisFileWriter::BasisFileWriter(const std::string& path, const BasisFileHeader&
   sized.Mass.resize(header.Rows);
   const std::uint64_t used = FixedBytes + VariableHeader(sized).size() + WarningRoom;
   this->Header.PayloadOffset = (used + page - 1) / page * page;
+  const std::uint64_t rowBytes = std::max<std::uint64_t>(1, header.Columns * header.BytesPerValue);
+  this->TileRows = std::max<std::uint64_t>(1, tileBytes / rowBytes);
+  const std::uint64_t payload = this->Header.PayloadBytes();
   unlink(this->Partial.c_str());
   this->Descriptor = open(this->Partial.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (this->Descriptor < 0)
@@ -398,33 +462,33 @@ BasisFileWriter::BasisFileWriter(const std::string& path, const BasisFileHeader&
     throw BasisFileError(
       BasisFileError::Kind::Io, SystemError("cannot create the basis file", this->Partial));
   }
-  this->MappedBytes = this->Header.PayloadBytes();
-  // Blocks allocated now: a disk that fills up is an error here, not a SIGBUS when a band is
-  // written through the mapping.
-  const int allocated = posix_fallocate(
-    this->Descriptor, 0, static_cast<off_t>(this->Header.PayloadOffset + this->MappedBytes));
-  if (allocated != 0)
+  // The scratch beside it (same disk), unlinked at once: closing it frees its blocks, whatever
+  // ends the writer.
+  const std::string scratch = this->Partial + ".tiles";
+  this->Scratch = open(scratch.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (this->Scratch < 0)
   {
-    errno = allocated;
-    const std::string message = SystemError("cannot allocate the basis file", this->Partial);
+    const std::string message = SystemError("cannot create the scratch of the basis file", scratch);
     this->Discard();
     throw BasisFileError(BasisFileError::Kind::Io, message);
   }
-  if (this->MappedBytes > 0)
+  unlink(scratch.c_str());
+  // Blocks allocated now: a disk that fills up is an error here, not at the end of a long solve.
+  int allocated =
+    posix_fallocate(this->Descriptor, 0, static_cast<off_t>(this->Header.PayloadOffset + payload));
+  if (allocated == 0 && payload > 0)
   {
-    void* mapped = mmap(nullptr,
-      this->MappedBytes,
-      PROT_READ | PROT_WRITE,
-      MAP_SHARED,
-      this->Descriptor,
-      static_cast<off_t>(this->Header.PayloadOffset));
-    if (mapped == MAP_FAILED)
-    {
-      const std::string message = SystemError("cannot map the basis file", this->Partial);
-      this->Discard();
-      throw BasisFileError(BasisFileError::Kind::Io, message);
-    }
-    this->Payload = static_cast<unsigned char*>(mapped);
+    allocated = posix_fallocate(this->Scratch, 0, static_cast<off_t>(payload));
+  }
+  if (allocated != 0)
+  {
+    errno = allocated;
+    const std::string message = SystemError("cannot allocate the basis file and its scratch (" +
+        ByteCount(BasisFileDiskBytes(header.Rows, header.Columns, header.BytesPerValue)) +
+        " while it is written)",
+      this->Partial);
+    this->Discard();
+    throw BasisFileError(BasisFileError::Kind::Io, message);
   }
 }
 
@@ -440,10 +504,10 @@ BasisFileWriter::~BasisFileWriter()
 //------------------------------------------------------------------------------
 void BasisFileWriter::Discard()
 {
-  if (this->Payload)
+  if (this->Scratch >= 0)
   {
-    munmap(this->Payload, this->MappedBytes);
-    this->Payload = nullptr;
+    close(this->Scratch);
+    this->Scratch = -1;
   }
   if (this->Descriptor >= 0)
   {
@@ -454,6 +518,12 @@ void BasisFileWriter::Discard()
 }
 
 //------------------------------------------------------------------------------
+std::uint64_t BasisFileWriter::RowsOfTile(std::uint64_t t) const
+{
+  return std::min(this->TileRows, this->Header.Rows - t * this->TileRows);
+}
+
+//------------------------------------------------------------------------------
 void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
   std::uint64_t count,
   const double* values,
@@ -461,39 +531,51 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
   const std::vector<int>& sources,
   const std::vector<std::int64_t>& targets)
 {
+  const std::uint64_t n = this->Header.Rows;
   const std::uint64_t m = this->Header.Columns;
+  const std::uint32_t b = this->Header.BytesPerValue;
   if (firstColumn + count > m)
   {
     throw std::out_of_range("BasisFileWriter::WriteColumns: columns beyond m");
   }
-  // Blocks of rows: each column of the band is read in order over a block, and the block's
-  // rows of the file (m values each) stay in the cache and the TLB. A row at a time would read
-  // the band across its columns, n values apart: a cache and TLB miss per value (10 times
-  // slower on 200K x 500).
-  const std::size_t block = 256;
-  for (std::size_t begin = 0; begin < targets.size(); begin += block)
+  if (count == 0 || n == 0)
   {
-    const std::size_t end = std::min(targets.size(), begin + block);
-    for (std::uint64_t k = 0; k < count; ++k)
+    return;
+  }
+  // The source row of each output row (-1: none), so that a tile is gathered in its own order.
+  std::vector<int> sourceOf(n, -1);
+  for (std::size_t e = 0; e < targets.size(); ++e)
+  {
+    sourceOf[static_cast<std::size_t>(targets[e])] = sources[e];
+  }
+  std::vector<unsigned char> tile(std::min(n, this->TileRows) * count * b);
+  for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
+  {
+    const std::uint64_t first = t * this->TileRows;
+    const std::uint64_t tileRows = this->RowsOfTile(t);
+    if (b == 4)
     {
-      const double* column = values + k * rows;
-      if (this->Header.BytesPerValue == 4)
-      {
-        float* out = reinterpret_cast<float*>(this->Payload) + firstColumn + k;
-        for (std::size_t e = begin; e < end; ++e)
-        {
-          out[static_cast<std::uint64_t>(targets[e]) * m] = static_cast<float>(column[sources[e]]);
-        }
-      }
-      else
-      {
-        double* out = reinterpret_cast<double*>(this->Payload) + firstColumn + k;
-        for (std::size_t e = begin; e < end; ++e)
-        {
-          out[static_cast<std::uint64_t>(targets[e]) * m] = column[sources[e]];
-        }
-      }
+      GatherTile(reinterpret_cast<float*>(tile.data()),
+        values,
+        rows,
+        count,
+        sourceOf.data() + first,
+        tileRows);
     }
+    else
+    {
+      GatherTile(reinterpret_cast<double*>(tile.data()),
+        values,
+        rows,
+        count,
+        sourceOf.data() + first,
+        tileRows);
+    }
+    WriteAll(this->Scratch,
+      tile.data(),
+      tileRows * count * b,
+      (first * m + firstColumn * tileRows) * b,
+      this->Partial + " (its scratch)");
   }
 }
 
@@ -521,12 +603,47 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     throw BasisFileError(BasisFileError::Kind::Io,
       "the header of '" + this->Partial + "' grew beyond the room kept for it");
   }
+  // The payload, tile after tile: one sequential read of the scratch, one sequential write.
+  const std::uint64_t n = final.Rows;
+  const std::uint64_t m = final.Columns;
+  const std::uint32_t b = final.BytesPerValue;
+  if (n > 0 && m > 0)
+  {
+    const std::uint64_t tileBytes = std::min(n, this->TileRows) * m * b;
+    std::vector<unsigned char> columns(tileBytes);
+    std::vector<unsigned char> rows(tileBytes);
+    for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
+    {
+      const std::uint64_t first = t * this->TileRows;
+      const std::uint64_t tileRows = this->RowsOfTile(t);
+      const std::uint64_t bytes = tileRows * m * b;
+      if (!ReadAll(this->Scratch, reinterpret_cast<char*>(columns.data()), bytes, first * m * b))
+      {
+        throw BasisFileError(
+          BasisFileError::Kind::Io, SystemError("cannot read back the scratch of", this->Partial));
+      }
+      if (b == 4)
+      {
+        TransposeTile(reinterpret_cast<float*>(rows.data()),
+          reinterpret_cast<const float*>(columns.data()),
+          tileRows,
+          m);
+      }
+      else
+      {
+        TransposeTile(reinterpret_cast<double*>(rows.data()),
+          reinterpret_cast<const double*>(columns.data()),
+          tileRows,
+          m);
+      }
+      WriteAll(
+        this->Descriptor, rows.data(), bytes, final.PayloadOffset + first * m * b, this->Partial);
+    }
+  }
+  close(this->Scratch);
+  this->Scratch = -1;
   WriteAll(this->Descriptor, FixedHeader(final, variable), 0, this->Partial);
   WriteAll(this->Descriptor, variable, FixedBytes, this->Partial);
-  if (this->Payload && msync(this->Payload, this->MappedBytes, MS_SYNC) != 0)
-  {
-    throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot flush", this->Partial));
-  }
   if (fsync(this->Descriptor) != 0)
   {
     throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot sync", this->Partial));
@@ -536,11 +653,6 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot rename to", this->Path));
   }
   this->Committed = true;
-  if (this->Payload)
-  {
-    munmap(this->Payload, this->MappedBytes);
-    this->Payload = nullptr;
-  }
   close(this->Descriptor);
   this->Descriptor = -1;
   const int directory = open(DirectoryOf(this->Path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -608,7 +720,7 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
   const std::string memory =
     "about " + ByteCount(inMemory) + " needed in memory, " + ByteCount(available) + " available";
   const std::string disk = unwritable.empty()
-    ? ByteCount(fileBytes) + " file, " + ByteCount(diskFree) + " free on its disk"
+    ? ByteCount(fileBytes) + " on its disk while it is written, " + ByteCount(diskFree) + " free"
     : unwritable;
   if (requested == BasisStorage::InMemory)
   {
@@ -650,9 +762,9 @@ StorageChoice ChooseBasisStorage(BasisStorage requested,
   choice.Chosen = BasisStorage::Automatic;
   choice.Refusal = "A file would not do either: " +
     (!unwritable.empty() ? unwritable + " (choose a BasisFileName in a writable directory)"
-      : inFile > available
+        : inFile > available
         ? "the solve alone needs about " + ByteCount(inFile) + " of memory"
-        : "the " + ByteCount(fileBytes) + " file needs a disk with that much free (" +
+        : "the file needs " + ByteCount(fileBytes) + " on its disk while it is written (" +
           ByteCount(diskFree) + " free on its disk; name a BasisFileName on another)") +
     ".";
   return choice;

@@ -23,10 +23,14 @@
  * a file appears under its name only complete: BasisFileWriter writes `<name>.partial`, fsyncs
  * and renames it, and removes it when it is not committed (an error or an abort).
  *
- * Writing band by band into a row-major file is strided (every band touches every row): the
- * writer writes through a shared writable mapping of the file and lets the page cache combine
- * a row's bands (Documentation/large-meshes.md: measured on 200K x 500; a file larger than the
- * page cache rewrites pages per band).
+ * Writing band by band into a row-major file is strided (every band touches every row), and
+ * through the page cache it rewrites each page once a band when the file is larger than what
+ * the cache keeps dirty (171 GiB written for a 7.5 GiB file: Documentation/large-meshes.md).
+ * BasisFileWriter therefore writes the bands into a scratch file of row tiles, each tile's rows
+ * column after column (a band is one contiguous write a tile), and Commit transposes tile after
+ * tile into the payload: the disk writes each value twice and reads it once, in large
+ * sequential blocks. The scratch is unlinked as soon as it is created (nothing is left behind,
+ * even by a crash); the disk holds both until the commit (BasisFileDiskBytes).
  *
  * Mapping: MapBasisPayload maps the payload read-only and shared (PROT_READ, MAP_SHARED): its
  * pages are page cache (RssFile), not the process's anonymous memory, are never charged against
@@ -131,16 +135,32 @@ std::string DescribeOptionChanges(const std::string& before, const std::string& 
  */
 BasisFileHeader ReadBasisFileHeader(const std::string& path);
 
+/// Bytes of the scratch tiles of BasisFileWriter (a tile is as many whole rows as fit; at least
+/// one row) and of each of the two buffers of its commit.
+constexpr std::uint64_t BasisFileTileBytes = 16ull << 20;
+
+/// The disk space a basis file of n x m values of b bytes takes while it is written: the payload
+/// twice (the file and the writer's scratch; the scratch goes at the commit), the header aside.
+std::uint64_t BasisFileDiskBytes(std::uint64_t n, std::uint64_t m, std::uint32_t b);
+
 /**
  * Writes a basis file atomically: the constructor creates `<path>.partial` (replacing a stale
- * one) sized for the payload, the bands are written as they come, Commit() flushes, fsyncs and
- * renames it to `path`. A writer destroyed without Commit() removes the partial file.
+ * one) and the scratch of the bands (unlinked at once), both allocated on the disk, the bands are
+ * written into the scratch as they come, Commit() transposes the scratch into the payload,
+ * writes the header, fsyncs and renames the partial file to `path`. A writer destroyed without
+ * Commit() removes the partial file.
  */
 class BasisFileWriter
 {
 public:
-  /// \throws BasisFileError (Io) when the file cannot be created, sized or mapped.
-  BasisFileWriter(const std::string& path, const BasisFileHeader& header);
+  /**
+   * \param tileBytes The size of a scratch tile (BasisFileTileBytes; tests pass a few rows' worth
+   *        to have many tiles).
+   * \throws BasisFileError (Io) when the file or its scratch cannot be created or allocated.
+   */
+  BasisFileWriter(const std::string& path,
+    const BasisFileHeader& header,
+    std::uint64_t tileBytes = BasisFileTileBytes);
   ~BasisFileWriter();
   BasisFileWriter(const BasisFileWriter&) = delete;
   BasisFileWriter& operator=(const BasisFileWriter&) = delete;
@@ -148,8 +168,9 @@ public:
   /**
    * Writes columns [firstColumn, firstColumn + count) of the rows listed: value (r, c) of the
    * column-major block `values` (rows x count, leading dimension `rows`) goes to each output row
-   * targets[e] with sources[e] == r. Output rows no target reaches stay 0 (a sparse file reads
-   * as zeros).
+   * targets[e] with sources[e] == r. Output rows no target reaches are 0. Columns written again
+   * (a solve that restarts) replace the earlier ones.
+   * \throws BasisFileError (Io) when the scratch cannot be written.
    */
   void WriteColumns(std::uint64_t firstColumn,
     std::uint64_t count,
@@ -159,9 +180,9 @@ public:
     const std::vector<std::int64_t>& targets);
 
   /**
-   * Completes the file: its header (eigenvalues, figures and warnings known only at the end may
-   * be set in `header`; n, m, b must not change), msync, fsync, rename to the final name, fsync
-   * of the directory. \throws BasisFileError (Io).
+   * Completes the file: the payload from the scratch, its header (eigenvalues, figures and
+   * warnings known only at the end may be set in `header`; n, m, b must not change), fsync,
+   * rename to the final name, fsync of the directory. \throws BasisFileError (Io).
    */
   void Commit(const BasisFileHeader& header);
 
@@ -170,12 +191,15 @@ public:
 
 private:
   void Discard();
+  /// The rows of tile t: [t TileRows, min(n, (t + 1) TileRows)).
+  std::uint64_t RowsOfTile(std::uint64_t t) const;
   std::string Path;
   std::string Partial;
   BasisFileHeader Header;
   int Descriptor = -1;
-  unsigned char* Payload = nullptr;
-  std::uint64_t MappedBytes = 0;
+  /// The scratch file (unlinked): tile t at byte t TileRows m b, its rows column after column.
+  int Scratch = -1;
+  std::uint64_t TileRows = 1;
   bool Committed = false;
 };
 
@@ -211,8 +235,9 @@ struct StorageChoice
 /**
  * The storage of a basis. AUTOMATIC: in memory when `inMemory` fits in `available`; else a file
  * when `inFile` (the same computation without the output basis in memory) fits and the disk
- * has `fileBytes` free; else refused. IN_MEMORY and FILE are taken as asked (FILE is still
- * refused when the disk lacks room; the memory check of the solve itself stays with ComputeBasis).
+ * has `fileBytes` (BasisFileDiskBytes) free; else refused. IN_MEMORY and FILE are taken as
+ * asked (FILE is still refused when the disk lacks room; the memory check of the solve itself
+ * stays with ComputeBasis).
  * \param available Bytes of memory available (MemoryLimit or the system's).
  * \param diskFree Bytes free on the file's disk.
  * \param unwritable Why no file can be created in the file's directory (UnwritableDirectory),
