@@ -659,7 +659,7 @@ void CheckExactZeroMode(const Problem& p, int m, EigenOptions options, const std
   {
     return;
   }
-  const double constant = 1.0 / std::sqrt(p.M.sum());
+  const double constant = 1.0 / std::sqrt(SumOfEntries(p.M));
   Check((r.Eigenvectors.col(0).array() == constant).all(), name + ": h_0 is exactly 1/sqrt(area)");
   const Vector overlap =
     r.Eigenvectors.rightCols(m - 1).transpose() * (p.M * r.Eigenvectors.col(0));

@@ -257,7 +257,7 @@ EigenResult DenseEigenpairs(const SparseMatrix& L,
 /// 1).
 Vector ConstantNullVector(const SparseMatrix& M)
 {
-  return Vector::Constant(M.rows(), 1.0 / std::sqrt(M.sum()));
+  return Vector::Constant(M.rows(), 1.0 / std::sqrt(SumOfEntries(M)));
 }
 
 /**
@@ -441,7 +441,7 @@ EigenResult SolveByBands(const SparseMatrix& L,
   const Monitor& monitor)
 {
   const Eigen::Index n = L.rows();
-  const double area = M.sum();
+  const double area = SumOfEntries(M);
   // The null vector in the iteration's pencil (EigenOptions::ConstantNullSpace): the bands work
   // in its M-orthogonal complement.
   DenseMatrix nulls;

@@ -39,14 +39,9 @@ constexpr Eigen::Index ParallelRows = 2000;
  */
 constexpr double SubtreesPerThread = 8.0;
 
-/**
- * Scratch space of the factorization, aligned as Eigen aligns its own matrices. Eigen's
- * vectorized kernels handle the unaligned entries at the start of a block one by one, without
- * fused multiply-adds where the vectorized part has them: with buffers aligned at random (as
- * malloc places them, differently on every thread) the rounding of a product would depend on
- * the thread that computes it.
- */
-using ScratchBuffer = std::vector<double, Eigen::aligned_allocator<double>>;
+/// Scratch space of the factorization: aligned (AlignedBuffer, Common/Mesh.h), so that the
+/// rounding of a product does not depend on the thread that computes it.
+using ScratchBuffer = AlignedBuffer;
 
 /// Grow a scratch buffer to at least `size` entries and return its storage.
 double* Scratch(ScratchBuffer& buffer, std::size_t size)

@@ -146,7 +146,8 @@ private:
   /// Values of supernode s: a column-major (rows x columns) block at Values[ValueStart[s]].
   /// Unit diagonal of L not stored: the diagonal holds D.
   std::vector<std::size_t> ValueStart;
-  std::vector<double> Values;
+  /// Aligned (AlignedBuffer): the dense kernels work on blocks of it.
+  AlignedBuffer Values;
   /// Supernode of each column.
   std::vector<int> SupernodeOf;
   /// Update from descendant supernode Descendant to supernode s: the descendant's rows [Begin,
