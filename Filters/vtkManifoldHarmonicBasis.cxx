@@ -628,7 +628,7 @@ void WriteBasisFile(spectral::BasisResult& basis,
     Targets(basis.InputPointIds, welding.Merged() ? welding.Map : std::vector<vtkIdType>(), numPts);
   spectral::BasisFileHeader header = FileHeader(plan, numPts, bytesPerValue);
   header.Columns = static_cast<std::uint64_t>(H.cols());
-  spectral::BasisFileWriter writer(plan.Path, header);
+  spectral::BasisFileWriter writer(plan.Path, header, spectral::BasisFileWriting::Whole);
   writer.WriteColumns(0, header.Columns, H.data(), H.rows(), targets.Rows, targets.Ids);
   CommitBasisFile(writer, header, basis, targets);
   H.resize(0, 0);
@@ -661,7 +661,8 @@ spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
     header.Columns = static_cast<std::uint64_t>(begun.Pairs.Eigenvalues.size() > 0
         ? static_cast<long long>(begun.Pairs.Eigenvalues.size())
         : std::min<long long>(requested, usable));
-    writer.reset(new spectral::BasisFileWriter(plan.Path, header));
+    writer.reset(
+      new spectral::BasisFileWriter(plan.Path, header, spectral::BasisFileWriting::InBands));
   };
   options.Sink.Harmonics =
     [&](int first, const spectral::Vector& values, const spectral::DenseMatrix& harmonics)

@@ -345,8 +345,9 @@ public:
    * computed, transformed, filtered and saved; the array must never be written (a write is a
    * segmentation fault; DeepCopy it first). AUTOMATIC: in memory when the estimate of
    * Filters/Spectral/Solver/Memory.h fits in MemoryLimit (or the available memory), else a file
-   * when the solve alone fits and the file's disk has room (statvfs), else an error naming what
-   * would make it run; a named BasisFileName always means a file. GetStorageUsed() and
+   * when the solve alone fits and the file's disk has room (statvfs; twice the basis while it
+   * is written, spectral::BasisFileDiskBytes), else an error naming what would make it run;
+   * a named BasisFileName always means a file. GetStorageUsed() and
    * GetStorageReason() say what was chosen and why (a warning too when AUTOMATIC chose a file).
    * Serial runs of the Built-in solver only: FILE or a BasisFileName in a distributed run or
    * with the SLEPc solver is an error. The one declaration of these values.

@@ -213,8 +213,10 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   const bool streamed = options.UpperFrequency <= 0.0 && streaming <= written;
   const std::uint64_t inFile = streamed ? streaming : written;
   const std::string path = name.empty() ? TemporaryPath() : name;
-  const std::uint64_t fileBytes =
-    spectral::BasisFileDiskBytes(n, static_cast<std::uint64_t>(m), options.BytesPerValue);
+  const std::uint64_t fileBytes = spectral::BasisFileDiskBytes(n,
+    static_cast<std::uint64_t>(m),
+    options.BytesPerValue,
+    streamed ? spectral::BasisFileWriting::InBands : spectral::BasisFileWriting::Whole);
   const spectral::BasisStorage asked =
     vtkManifoldHarmonicsEnums::To(vtkManifoldHarmonicsEnums::Storage, requested, "Storage");
   // Checked before the solve: a long solve must not end on a file that cannot be created.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -73,21 +74,31 @@ Sample MakeSample(std::uint64_t n, std::uint64_t m, std::uint32_t bytes)
   return s;
 }
 
-// Writes the sample in bands of `band` columns and commits it (scratch tiles of `tileBytes`).
-// The first band is written twice, other values first, as a solve that restarts does.
+// Writes the sample in bands of `band` columns and commits it (tiles of `tileBytes`). The first
+// band is written twice, other values first, as a solve that restarts does. Whole: all the
+// columns in one call, which `band` then does not split.
 void WriteSample(const std::string& path,
   const Sample& s,
   std::uint64_t band,
-  std::uint64_t tileBytes = BasisFileTileBytes)
+  std::uint64_t tileBytes = BasisFileTileBytes,
+  BasisFileWriting writing = BasisFileWriting::InBands)
 {
-  BasisFileWriter writer(path, s.Header, tileBytes);
-  Check(!Exists(writer.PartialPath() + ".tiles"), "the scratch is unlinked as soon as created");
+  BasisFileWriter writer(path, s.Header, writing, tileBytes);
+  Check(!Exists(writer.PartialPath() + ".tiles"), "the scratch has no name");
   const std::uint64_t n = s.Header.Rows;
-  const std::vector<double> other(s.Block.size(), -7.0);
-  writer.WriteColumns(0, std::min(band, s.Header.Columns), other.data(), n, s.Sources, s.Targets);
-  for (std::uint64_t c = 0; c < s.Header.Columns; c += band)
+  const std::uint64_t m = s.Header.Columns;
+  if (writing == BasisFileWriting::Whole)
   {
-    const std::uint64_t count = std::min(band, s.Header.Columns - c);
+    band = m;
+  }
+  const std::vector<double> other(s.Block.size(), -7.0);
+  if (writing == BasisFileWriting::InBands)
+  {
+    writer.WriteColumns(0, std::min(band, m), other.data(), n, s.Sources, s.Targets);
+  }
+  for (std::uint64_t c = 0; c < m; c += band)
+  {
+    const std::uint64_t count = std::min(band, m - c);
     writer.WriteColumns(c, count, s.Block.data() + c * n, n, s.Sources, s.Targets);
   }
   BasisFileHeader final = s.Header;
@@ -96,18 +107,46 @@ void WriteSample(const std::string& path,
   writer.Commit(final);
 }
 
+// The number of open file descriptors of the process.
+int OpenDescriptors()
+{
+  int count = 0;
+  if (DIR* directory = opendir("/proc/self/fd"))
+  {
+    while (readdir(directory))
+    {
+      ++count;
+    }
+    closedir(directory);
+  }
+  return count;
+}
+
 //------------------------------------------------------------------------------
 void RoundTrip()
 {
-  // Scratch tiles: one for the whole file, 3 rows (the last has 1), 1 row.
-  for (int t = 0; t < 6; ++t)
+  // Tiles: one for the whole file, 3 rows (the last has 1), 1 row; in bands and whole; doubles
+  // and floats.
+  const int descriptors = OpenDescriptors();
+  for (int t = 0; t < 12; ++t)
   {
-    const std::uint64_t tileRows = std::vector<std::uint64_t>{ 0, 3, 1 }[t / 2];
+    const std::uint64_t tileRows = std::vector<std::uint64_t>{ 0, 3, 1 }[t / 4];
+    const BasisFileWriting writing =
+      t % 4 < 2 ? BasisFileWriting::InBands : BasisFileWriting::Whole;
     const std::uint32_t bytes = t % 2 == 0 ? 8u : 4u;
     const std::string path = TempPath("roundtrip.mhb");
     const Sample s = MakeSample(37, 11, bytes);
-    WriteSample(path, s, 4, tileRows == 0 ? BasisFileTileBytes : tileRows * 11 * bytes);
+    WriteSample(path, s, 4, tileRows == 0 ? BasisFileTileBytes : tileRows * 11 * bytes, writing);
     Check(Exists(path) && !Exists(path + ".partial"), "committed: the file, no partial file");
+    struct stat status;
+    stat(path.c_str(), &status);
+    const std::uint64_t payloadBytes = 37 * 11 * bytes;
+    const std::uint64_t disk = BasisFileDiskBytes(37, 11, bytes, writing);
+    Check(static_cast<std::uint64_t>(status.st_size) +
+          (writing == BasisFileWriting::InBands ? payloadBytes : 0) <=
+        disk,
+      "BasisFileDiskBytes (" + std::to_string(disk) + ") covers the file (" +
+        std::to_string(status.st_size) + " bytes) and, in bands, its scratch");
     const BasisFileHeader h = ReadBasisFileHeader(path);
     Check(h.Rows == 37 && h.Columns == 11 && h.BytesPerValue == bytes && h.MeshDigest == 0x1234,
       "n, m, precision and digest read back");
@@ -143,6 +182,63 @@ void RoundTrip()
     UnmapBasisPayload(payload);
     std::remove(path.c_str());
   }
+  Check(OpenDescriptors() == descriptors, "no file descriptor left open");
+}
+
+//------------------------------------------------------------------------------
+// Expects `write` to throw `Error`.
+template<typename Error, typename Write>
+void ExpectThrows(Write write, const std::string& what)
+{
+  try
+  {
+    write();
+    Check(false, what + ": no exception");
+  }
+  catch (const Error& error)
+  {
+    Check(true, what + ": " + error.what());
+  }
+}
+
+//------------------------------------------------------------------------------
+void InvalidWritesRefused()
+{
+  const std::string path = TempPath("invalid.mhb");
+  const Sample s = MakeSample(20, 6, 8);
+  const int descriptors = OpenDescriptors();
+  {
+    BasisFileWriter writer(path, s.Header);
+    std::vector<std::int64_t> far = s.Targets;
+    far.back() = 20;
+    ExpectThrows<std::out_of_range>([&]()
+      { writer.WriteColumns(0, 2, s.Block.data(), 20, s.Sources, far); },
+      "a target row beyond n");
+    std::vector<int> missing = s.Sources;
+    missing.front() = 20;
+    ExpectThrows<std::out_of_range>([&]()
+      { writer.WriteColumns(0, 2, s.Block.data(), 20, missing, s.Targets); },
+      "a source row beyond the block's rows");
+    std::vector<int> shorter(s.Sources.begin(), s.Sources.end() - 1);
+    ExpectThrows<std::invalid_argument>([&]()
+      { writer.WriteColumns(0, 2, s.Block.data(), 20, shorter, s.Targets); },
+      "fewer sources than targets");
+    ExpectThrows<std::out_of_range>([&]()
+      { writer.WriteColumns(5, 2, s.Block.data(), 20, s.Sources, s.Targets); },
+      "columns beyond m");
+  }
+  {
+    BasisFileWriter whole(path, s.Header, BasisFileWriting::Whole);
+    ExpectThrows<std::invalid_argument>([&]()
+      { whole.WriteColumns(0, 3, s.Block.data(), 20, s.Sources, s.Targets); },
+      "part of the columns to a Whole writer");
+  }
+  BasisFileHeader odd = s.Header;
+  odd.BytesPerValue = 2;
+  ExpectThrows<std::invalid_argument>(
+    [&]() { BasisFileWriter writer(path, odd); }, "values of 2 bytes");
+  Check(!Exists(path) && !Exists(path + ".partial") && OpenDescriptors() == descriptors,
+    "refused writes leave no file and no open descriptor");
 }
 
 //------------------------------------------------------------------------------
@@ -222,7 +318,7 @@ void UncommittedLeavesNothing()
   {
     BasisFileWriter writer(path, s.Header);
     writer.WriteColumns(0, 5, s.Block.data(), 50, s.Sources, s.Targets);
-    Check(Exists(writer.PartialPath()), "the bands go to the partial file while it is written");
+    Check(Exists(writer.PartialPath()), "the partial file exists while the bands are written");
     // Destroyed without Commit: an abort or an error of the solve.
   }
   Check(!Exists(path + ".partial"), "an uncommitted writer removes its partial file");
@@ -275,6 +371,7 @@ void DigestAndOptions()
 
 const Case Cases[] = {
   { "RoundTrip", RoundTrip },
+  { "InvalidWritesRefused", InvalidWritesRefused },
   { "DamagedAndForeignFiles", DamagedAndForeignFiles },
   { "UncommittedLeavesNothing", UncommittedLeavesNothing },
   { "StorageChoiceRules", StorageChoiceRules },

@@ -144,11 +144,13 @@ std::string FixedHeader(const BasisFileHeader& header, const std::string& variab
 }
 
 //------------------------------------------------------------------------------
+// Writes `size` bytes at `offset`; \throws BasisFileError (Io) "<what> '<path>': <reason>".
 void WriteAll(int descriptor,
   const void* data,
   std::uint64_t size,
   std::uint64_t offset,
-  const std::string& path)
+  const std::string& path,
+  const std::string& what = "cannot write")
 {
   const char* bytes = static_cast<const char*>(data);
   std::uint64_t done = 0;
@@ -160,9 +162,13 @@ void WriteAll(int descriptor,
     {
       continue;
     }
+    if (wrote == 0)
+    {
+      errno = ENOSPC; // no progress and no error: report it as what it would be
+    }
     if (wrote <= 0)
     {
-      throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot write", path));
+      throw BasisFileError(BasisFileError::Kind::Io, SystemError(what, path));
     }
     done += static_cast<std::size_t>(wrote);
   }
@@ -228,8 +234,9 @@ std::map<std::string, std::string> OptionLines(const std::string& text)
   return lines;
 }
 //------------------------------------------------------------------------------
-// Gathers columns of a tile: out (tileRows x count, column-major) takes value (sourceOf[r0 + r],
-// k) of `values` (leading dimension `rows`), 0 where sourceOf is negative.
+// Gathers columns of a tile: out (tileRows x count, column-major) takes value (sourceOf[r], k)
+// of `values` (leading dimension `rows`), 0 where sourceOf[r] is negative (`sourceOf` starts
+// at the tile's first row).
 template<typename T>
 void GatherTile(T* out,
   const double* values,
@@ -432,19 +439,60 @@ BasisFileHeader ReadBasisFileHeader(const std::string& path)
 }
 
 //------------------------------------------------------------------------------
-std::uint64_t BasisFileDiskBytes(std::uint64_t n, std::uint64_t m, std::uint32_t b)
+std::uint64_t BasisFileDiskBytes(std::uint64_t n,
+  std::uint64_t m,
+  std::uint32_t b,
+  BasisFileWriting writing)
 {
-  return 2 * n * m * b;
+  // The header: the fixed part, n masses, m eigenvalues, the figures, the warnings' room, and
+  // the options (a few hundred bytes; a page is kept for them), up to the page-aligned payload.
+  const std::uint64_t page = PageSize();
+  const std::uint64_t header = FixedBytes + 8 * (n + m) + 64 + WarningRoom + page;
+  const std::uint64_t payload = n * m * b;
+  return (header + page - 1) / page * page +
+    (writing == BasisFileWriting::InBands ? 2 * payload : payload);
 }
+
+namespace
+{
+//------------------------------------------------------------------------------
+// An unlinked file in `directory` for the scratch of `partial`: O_TMPFILE where the file system
+// has it (never has a name), else a new file named after `partial`, unlinked at once. -1 with
+// errno set when neither can be created.
+int CreateScratch(const std::string& partial)
+{
+  const int unnamed = open(DirectoryOf(partial).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (unnamed >= 0)
+  {
+    return unnamed;
+  }
+  const std::string named = partial + ".tiles";
+  unlink(named.c_str());
+  const int descriptor =
+    open(named.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (descriptor >= 0)
+  {
+    unlink(named.c_str());
+  }
+  return descriptor;
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 BasisFileWriter::BasisFileWriter(const std::string& path,
   const BasisFileHeader& header,
+  BasisFileWriting writing,
   std::uint64_t tileBytes)
   : Path(path)
   , Partial(path + ".partial")
   , Header(header)
+  , Writing(writing)
 {
+  if (header.BytesPerValue != 4 && header.BytesPerValue != 8)
+  {
+    throw std::invalid_argument(
+      "BasisFileWriter: values of 4 or 8 bytes, not " + std::to_string(header.BytesPerValue));
+  }
   const std::uint64_t page = PageSize();
   // Room for the header of Commit: m eigenvalues, n masses, and warnings known only at the end.
   BasisFileHeader sized = header;
@@ -462,30 +510,32 @@ BasisFileWriter::BasisFileWriter(const std::string& path,
     throw BasisFileError(
       BasisFileError::Kind::Io, SystemError("cannot create the basis file", this->Partial));
   }
-  // The scratch beside it (same disk), unlinked at once: closing it frees its blocks, whatever
-  // ends the writer.
-  const std::string scratch = this->Partial + ".tiles";
-  this->Scratch = open(scratch.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (this->Scratch < 0)
+  if (writing == BasisFileWriting::InBands)
   {
-    const std::string message = SystemError("cannot create the scratch of the basis file", scratch);
-    this->Discard();
-    throw BasisFileError(BasisFileError::Kind::Io, message);
+    // Beside it (the same disk), without a name: closing it frees its blocks, whatever ends the
+    // writer.
+    this->Scratch = CreateScratch(this->Partial);
+    if (this->Scratch < 0)
+    {
+      const std::string message =
+        SystemError("cannot create the scratch of the basis file", this->Partial);
+      this->Discard();
+      throw BasisFileError(BasisFileError::Kind::Io, message);
+    }
   }
-  unlink(scratch.c_str());
   // Blocks allocated now: a disk that fills up is an error here, not at the end of a long solve.
   int allocated =
     posix_fallocate(this->Descriptor, 0, static_cast<off_t>(this->Header.PayloadOffset + payload));
-  if (allocated == 0 && payload > 0)
+  if (allocated == 0 && this->Scratch >= 0 && payload > 0)
   {
     allocated = posix_fallocate(this->Scratch, 0, static_cast<off_t>(payload));
   }
   if (allocated != 0)
   {
     errno = allocated;
-    const std::string message = SystemError("cannot allocate the basis file and its scratch (" +
-        ByteCount(BasisFileDiskBytes(header.Rows, header.Columns, header.BytesPerValue)) +
-        " while it is written)",
+    const std::string message = SystemError("cannot allocate the " +
+        ByteCount(BasisFileDiskBytes(header.Rows, header.Columns, header.BytesPerValue, writing)) +
+        " the basis file takes while it is written",
       this->Partial);
     this->Discard();
     throw BasisFileError(BasisFileError::Kind::Io, message);
@@ -538,44 +588,88 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
   {
     throw std::out_of_range("BasisFileWriter::WriteColumns: columns beyond m");
   }
+  if (this->Writing == BasisFileWriting::Whole && (firstColumn != 0 || count != m))
+  {
+    throw std::invalid_argument("BasisFileWriter::WriteColumns: a writer of the Whole basis "
+                                "takes all its columns at once");
+  }
+  if (sources.size() != targets.size())
+  {
+    throw std::invalid_argument("BasisFileWriter::WriteColumns: sources and targets differ in "
+                                "length");
+  }
   if (count == 0 || n == 0)
   {
     return;
   }
   // The source row of each output row (-1: none), so that a tile is gathered in its own order.
-  std::vector<int> sourceOf(n, -1);
+  this->SourceOf.assign(n, -1);
   for (std::size_t e = 0; e < targets.size(); ++e)
   {
-    sourceOf[static_cast<std::size_t>(targets[e])] = sources[e];
+    if (targets[e] < 0 || static_cast<std::uint64_t>(targets[e]) >= n || sources[e] < 0 ||
+      static_cast<std::uint64_t>(sources[e]) >= rows)
+    {
+      throw std::out_of_range("BasisFileWriter::WriteColumns: row " + std::to_string(sources[e]) +
+        " -> " + std::to_string(targets[e]) + " outside " + std::to_string(rows) + " -> " +
+        std::to_string(n));
+    }
+    this->SourceOf[static_cast<std::size_t>(targets[e])] = sources[e];
   }
-  std::vector<unsigned char> tile(std::min(n, this->TileRows) * count * b);
+  const std::uint64_t tileValues = std::min(n, this->TileRows) * count;
+  std::vector<unsigned char> tile(tileValues * b);
+  // A whole basis is transposed here, into the payload; bands go to the scratch.
+  std::vector<unsigned char> transposed(
+    this->Writing == BasisFileWriting::Whole ? tileValues * b : 0);
   for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
   {
     const std::uint64_t first = t * this->TileRows;
     const std::uint64_t tileRows = this->RowsOfTile(t);
+    const int* sourceOf = this->SourceOf.data() + first;
     if (b == 4)
     {
-      GatherTile(reinterpret_cast<float*>(tile.data()),
-        values,
-        rows,
-        count,
-        sourceOf.data() + first,
-        tileRows);
+      GatherTile(reinterpret_cast<float*>(tile.data()), values, rows, count, sourceOf, tileRows);
     }
     else
     {
-      GatherTile(reinterpret_cast<double*>(tile.data()),
-        values,
-        rows,
-        count,
-        sourceOf.data() + first,
-        tileRows);
+      GatherTile(reinterpret_cast<double*>(tile.data()), values, rows, count, sourceOf, tileRows);
+    }
+    if (this->Writing == BasisFileWriting::Whole)
+    {
+      this->TransposeInto(transposed.data(), tile.data(), tileRows);
+      WriteAll(this->Descriptor,
+        transposed.data(),
+        tileRows * m * b,
+        this->Header.PayloadOffset + first * m * b,
+        this->Partial);
+      continue;
     }
     WriteAll(this->Scratch,
       tile.data(),
       tileRows * count * b,
       (first * m + firstColumn * tileRows) * b,
-      this->Partial + " (its scratch)");
+      this->Partial,
+      "cannot write the scratch of");
+  }
+}
+
+//------------------------------------------------------------------------------
+void BasisFileWriter::TransposeInto(unsigned char* rowMajor,
+  const unsigned char* columnMajor,
+  std::uint64_t tileRows) const
+{
+  if (this->Header.BytesPerValue == 4)
+  {
+    TransposeTile(reinterpret_cast<float*>(rowMajor),
+      reinterpret_cast<const float*>(columnMajor),
+      tileRows,
+      this->Header.Columns);
+  }
+  else
+  {
+    TransposeTile(reinterpret_cast<double*>(rowMajor),
+      reinterpret_cast<const double*>(columnMajor),
+      tileRows,
+      this->Header.Columns);
   }
 }
 
@@ -603,11 +697,13 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     throw BasisFileError(BasisFileError::Kind::Io,
       "the header of '" + this->Partial + "' grew beyond the room kept for it");
   }
-  // The payload, tile after tile: one sequential read of the scratch, one sequential write.
+  // The payload from the scratch, tile after tile: one sequential read, one sequential write.
+  // The scratch's pages are dropped as they are read (they would push the payload out of the
+  // page cache, where the mapping that follows reads it).
   const std::uint64_t n = final.Rows;
   const std::uint64_t m = final.Columns;
   const std::uint32_t b = final.BytesPerValue;
-  if (n > 0 && m > 0)
+  if (this->Scratch >= 0 && n > 0 && m > 0)
   {
     const std::uint64_t tileBytes = std::min(n, this->TileRows) * m * b;
     std::vector<unsigned char> columns(tileBytes);
@@ -615,33 +711,28 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
     {
       const std::uint64_t first = t * this->TileRows;
-      const std::uint64_t tileRows = this->RowsOfTile(t);
-      const std::uint64_t bytes = tileRows * m * b;
+      const std::uint64_t bytes = this->RowsOfTile(t) * m * b;
+      errno = 0;
       if (!ReadAll(this->Scratch, reinterpret_cast<char*>(columns.data()), bytes, first * m * b))
       {
-        throw BasisFileError(
-          BasisFileError::Kind::Io, SystemError("cannot read back the scratch of", this->Partial));
+        throw BasisFileError(BasisFileError::Kind::Io,
+          "the scratch of '" + this->Partial + "' could not be read back (" +
+            (errno != 0 ? std::string(std::strerror(errno)) : "it ended early") + ")");
       }
-      if (b == 4)
-      {
-        TransposeTile(reinterpret_cast<float*>(rows.data()),
-          reinterpret_cast<const float*>(columns.data()),
-          tileRows,
-          m);
-      }
-      else
-      {
-        TransposeTile(reinterpret_cast<double*>(rows.data()),
-          reinterpret_cast<const double*>(columns.data()),
-          tileRows,
-          m);
-      }
+      posix_fadvise(this->Scratch,
+        static_cast<off_t>(first * m * b),
+        static_cast<off_t>(bytes),
+        POSIX_FADV_DONTNEED);
+      this->TransposeInto(rows.data(), columns.data(), this->RowsOfTile(t));
       WriteAll(
         this->Descriptor, rows.data(), bytes, final.PayloadOffset + first * m * b, this->Partial);
     }
   }
-  close(this->Scratch);
-  this->Scratch = -1;
+  if (this->Scratch >= 0)
+  {
+    close(this->Scratch);
+    this->Scratch = -1;
+  }
   WriteAll(this->Descriptor, FixedHeader(final, variable), 0, this->Partial);
   WriteAll(this->Descriptor, variable, FixedBytes, this->Partial);
   if (fsync(this->Descriptor) != 0)

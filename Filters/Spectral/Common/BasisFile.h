@@ -29,8 +29,9 @@
  * BasisFileWriter therefore writes the bands into a scratch file of row tiles, each tile's rows
  * column after column (a band is one contiguous write a tile), and Commit transposes tile after
  * tile into the payload: the disk writes each value twice and reads it once, in large
- * sequential blocks. The scratch is unlinked as soon as it is created (nothing is left behind,
- * even by a crash); the disk holds both until the commit (BasisFileDiskBytes).
+ * sequential blocks. The scratch has no name (O_TMPFILE, or unlinked as soon as created):
+ * nothing is left behind, even by a crash; the disk holds both until the commit
+ * (BasisFileDiskBytes). A basis computed in memory is written Whole, straight into the payload.
  *
  * Mapping: MapBasisPayload maps the payload read-only and shared (PROT_READ, MAP_SHARED): its
  * pages are page cache (RssFile), not the process's anonymous memory, are never charged against
@@ -136,19 +137,36 @@ std::string DescribeOptionChanges(const std::string& before, const std::string& 
 BasisFileHeader ReadBasisFileHeader(const std::string& path);
 
 /// Bytes of the scratch tiles of BasisFileWriter (a tile is as many whole rows as fit; at least
-/// one row) and of each of the two buffers of its commit.
+/// one row) and of each of the two buffers that transpose them.
 constexpr std::uint64_t BasisFileTileBytes = 16ull << 20;
 
-/// The disk space a basis file of n x m values of b bytes takes while it is written: the payload
-/// twice (the file and the writer's scratch; the scratch goes at the commit), the header aside.
-std::uint64_t BasisFileDiskBytes(std::uint64_t n, std::uint64_t m, std::uint32_t b);
+/// How a BasisFileWriter receives the basis.
+enum class BasisFileWriting
+{
+  /// Blocks of columns as a solve verifies them, in any order, again when the solve restarts:
+  /// they go to a scratch file, transposed into the payload at the commit.
+  InBands,
+  /// All the columns in one WriteColumns call (a basis computed in memory): transposed straight
+  /// into the payload, no scratch.
+  Whole
+};
+
+/// The disk space a basis file of n x m values of b bytes takes while it is written: its header
+/// (an upper bound) and payload, and the scratch of the bands (the payload again) when written
+/// InBands, until the commit.
+std::uint64_t BasisFileDiskBytes(std::uint64_t n,
+  std::uint64_t m,
+  std::uint32_t b,
+  BasisFileWriting writing);
 
 /**
  * Writes a basis file atomically: the constructor creates `<path>.partial` (replacing a stale
- * one) and the scratch of the bands (unlinked at once), both allocated on the disk, the bands are
- * written into the scratch as they come, Commit() transposes the scratch into the payload,
- * writes the header, fsyncs and renames the partial file to `path`. A writer destroyed without
- * Commit() removes the partial file.
+ * one) and, InBands, the scratch of the bands (a file without a name), both allocated on the
+ * disk; WriteColumns writes into the scratch (InBands) or the payload (Whole); Commit()
+ * transposes the scratch into the payload, writes the header, fsyncs and renames the partial
+ * file to `path`. A writer destroyed without Commit() removes the partial file. Memory: the
+ * source row of each output row (4 n bytes) and one tile while writing, two tiles (2
+ * BasisFileTileBytes) while transposing.
  */
 class BasisFileWriter
 {
@@ -156,10 +174,12 @@ public:
   /**
    * \param tileBytes The size of a scratch tile (BasisFileTileBytes; tests pass a few rows' worth
    *        to have many tiles).
-   * \throws BasisFileError (Io) when the file or its scratch cannot be created or allocated.
+   * \throws BasisFileError (Io) when the file or its scratch cannot be created or allocated;
+   *         std::invalid_argument for values of other than 4 or 8 bytes.
    */
   BasisFileWriter(const std::string& path,
     const BasisFileHeader& header,
+    BasisFileWriting writing = BasisFileWriting::InBands,
     std::uint64_t tileBytes = BasisFileTileBytes);
   ~BasisFileWriter();
   BasisFileWriter(const BasisFileWriter&) = delete;
@@ -169,8 +189,10 @@ public:
    * Writes columns [firstColumn, firstColumn + count) of the rows listed: value (r, c) of the
    * column-major block `values` (rows x count, leading dimension `rows`) goes to each output row
    * targets[e] with sources[e] == r. Output rows no target reaches are 0. Columns written again
-   * (a solve that restarts) replace the earlier ones.
-   * \throws BasisFileError (Io) when the scratch cannot be written.
+   * (a solve that restarts) replace the earlier ones. A Whole writer takes all m columns in one
+   * call.
+   * \throws BasisFileError (Io) when the file cannot be written; std::out_of_range for columns
+   *         beyond m or rows outside [0, rows) -> [0, n); std::invalid_argument otherwise.
    */
   void WriteColumns(std::uint64_t firstColumn,
     std::uint64_t count,
@@ -193,13 +215,21 @@ private:
   void Discard();
   /// The rows of tile t: [t TileRows, min(n, (t + 1) TileRows)).
   std::uint64_t RowsOfTile(std::uint64_t t) const;
+  /// A tile of `tileRows` rows, from its rows column after column to row-major.
+  void TransposeInto(unsigned char* rowMajor,
+    const unsigned char* columnMajor,
+    std::uint64_t tileRows) const;
   std::string Path;
   std::string Partial;
   BasisFileHeader Header;
   int Descriptor = -1;
-  /// The scratch file (unlinked): tile t at byte t TileRows m b, its rows column after column.
+  /// The scratch file (no name; InBands only): tile t at byte t TileRows m b, its rows column
+  /// after column.
   int Scratch = -1;
   std::uint64_t TileRows = 1;
+  BasisFileWriting Writing;
+  /// The source row of each output row (-1: none) of the last WriteColumns.
+  std::vector<int> SourceOf;
   bool Committed = false;
 };
 

@@ -29,10 +29,12 @@ using DenseMatrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 /**
  * A buffer of doubles aligned as Eigen aligns its own matrices (EIGEN_MAX_ALIGN_BYTES: 64 with
- * AVX-512). Memory that Eigen's vectorized kernels work on through a Map must be allocated so:
- * they handle the entries before the first aligned one apart (in another order, and without
- * the fused multiply-adds of the vectorized part), so with malloc's 16-byte alignment the
- * rounding would follow where the heap happened to place the buffer.
+ * AVX-512). Some of Eigen's vectorized kernels choose where their vector instructions start
+ * from the runtime address of a Map: a reduction (sum, mean, prod) called on the Map itself,
+ * an assignment into a Map whose packet and scalar paths add in different orders (small
+ * coefficient-based products, rowwise sums), self-adjoint products. With malloc's 16-byte
+ * alignment their rounding would follow where the heap happened to place the buffer; memory
+ * given to them must be allocated so. (Dot products, norms, GEMV and GEMM do not depend on it.)
  */
 using AlignedBuffer = std::vector<double, Eigen::aligned_allocator<double>>;
 
