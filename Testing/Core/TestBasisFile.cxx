@@ -14,7 +14,9 @@
 #include <vector>
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 using namespace spectral;
@@ -105,6 +107,19 @@ void WriteSample(const std::string& path,
   final.Warnings = { "a warning of the solve" };
   final.Residual = 3e-12;
   writer.Commit(final);
+}
+
+// Whether the file system of `path` has files without a name (O_TMPFILE).
+bool UnnamedFiles(const std::string& path)
+{
+  std::string directory = path.substr(0, path.find_last_of('/'));
+  const int descriptor = open(directory.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (descriptor < 0)
+  {
+    return false;
+  }
+  close(descriptor);
+  return true;
 }
 
 // The number of open file descriptors of the process.
@@ -318,13 +333,41 @@ void UncommittedLeavesNothing()
   {
     BasisFileWriter writer(path, s.Header);
     writer.WriteColumns(0, 5, s.Block.data(), 50, s.Sources, s.Targets);
-    Check(Exists(writer.PartialPath()), "the partial file exists while the bands are written");
+    Check(!UnnamedFiles(path) || !Exists(writer.PartialPath()),
+      "while written the file has no name (where the file system allows)");
     // Destroyed without Commit: an abort or an error of the solve.
   }
   Check(!Exists(path + ".partial"), "an uncommitted writer removes its partial file");
   Check(ReadBasisFileHeader(path).Options == before.Options,
     "the complete file under the name is untouched until a commit replaces it");
   std::remove(path.c_str());
+}
+
+//------------------------------------------------------------------------------
+void KilledLeavesNothing()
+{
+  // A process killed while it writes (out of memory: no destructor runs) leaves neither the
+  // file nor a partial file, where the file system has O_TMPFILE.
+  const std::string path = TempPath("killed.mhb");
+  const Sample s = MakeSample(300, 40, 8);
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    BasisFileWriter writer(path, s.Header);
+    writer.WriteColumns(0, 20, s.Block.data(), 300, s.Sources, s.Targets);
+    _exit(0); // no destructor, as SIGKILL
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  Check(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the writing process ended");
+  if (!UnnamedFiles(path))
+  {
+    std::printf(
+      "    (this file system has no O_TMPFILE: a killed writer leaves %s.partial)\n", path.c_str());
+    std::remove((path + ".partial").c_str());
+    return;
+  }
+  Check(!Exists(path) && !Exists(path + ".partial"), "a killed writer leaves no file behind");
 }
 
 //------------------------------------------------------------------------------
@@ -374,6 +417,7 @@ const Case Cases[] = {
   { "InvalidWritesRefused", InvalidWritesRefused },
   { "DamagedAndForeignFiles", DamagedAndForeignFiles },
   { "UncommittedLeavesNothing", UncommittedLeavesNothing },
+  { "KilledLeavesNothing", KilledLeavesNothing },
   { "StorageChoiceRules", StorageChoiceRules },
   { "DigestAndOptions", DigestAndOptions },
 };

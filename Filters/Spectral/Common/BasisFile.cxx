@@ -503,8 +503,15 @@ BasisFileWriter::BasisFileWriter(const std::string& path,
   const std::uint64_t rowBytes = std::max<std::uint64_t>(1, header.Columns * header.BytesPerValue);
   this->TileRows = std::max<std::uint64_t>(1, tileBytes / rowBytes);
   const std::uint64_t payload = this->Header.PayloadBytes();
-  unlink(this->Partial.c_str());
-  this->Descriptor = open(this->Partial.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // Without a name until the commit (O_TMPFILE) where the file system allows: a solve killed on
+  // the way (out of memory, a crash) leaves nothing behind. Else `<path>.partial`.
+  this->Descriptor = open(DirectoryOf(path).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0644);
+  this->Unnamed = this->Descriptor >= 0;
+  if (!this->Unnamed)
+  {
+    unlink(this->Partial.c_str());
+    this->Descriptor = open(this->Partial.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  }
   if (this->Descriptor < 0)
   {
     throw BasisFileError(
@@ -564,7 +571,10 @@ void BasisFileWriter::Discard()
     close(this->Descriptor);
     this->Descriptor = -1;
   }
-  unlink(this->Partial.c_str());
+  if (!this->Unnamed)
+  {
+    unlink(this->Partial.c_str());
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -738,6 +748,19 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
   if (fsync(this->Descriptor) != 0)
   {
     throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot sync", this->Partial));
+  }
+  if (this->Unnamed)
+  {
+    // The complete file gets the partial name (linkat through /proc, or AT_EMPTY_PATH where
+    // the process may), then the final one by an atomic rename.
+    unlink(this->Partial.c_str());
+    const std::string self = "/proc/self/fd/" + std::to_string(this->Descriptor);
+    if (linkat(AT_FDCWD, self.c_str(), AT_FDCWD, this->Partial.c_str(), AT_SYMLINK_FOLLOW) != 0 &&
+      linkat(this->Descriptor, "", AT_FDCWD, this->Partial.c_str(), AT_EMPTY_PATH) != 0)
+    {
+      throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot name", this->Partial));
+    }
+    this->Unnamed = false;
   }
   if (rename(this->Partial.c_str(), this->Path.c_str()) != 0)
   {

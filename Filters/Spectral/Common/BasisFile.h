@@ -20,8 +20,9 @@
  *
  * The file's size is exactly payload offset + n m b: a shorter file is truncated, a longer one
  * inconsistent. The payload has no checksum (reading 32 GB to check it would cost a minute);
- * a file appears under its name only complete: BasisFileWriter writes `<name>.partial`, fsyncs
- * and renames it, and removes it when it is not committed (an error or an abort).
+ * a file appears under its name only complete: BasisFileWriter writes it without a name
+ * (O_TMPFILE; else as `<name>.partial`), fsyncs it, names it `<name>.partial` and renames that,
+ * and leaves nothing when it is not committed (an error, an abort, a killed process).
  *
  * Writing band by band into a row-major file is strided (every band touches every row), and
  * through the page cache it rewrites each page once a band when the file is larger than what
@@ -160,13 +161,15 @@ std::uint64_t BasisFileDiskBytes(std::uint64_t n,
   BasisFileWriting writing);
 
 /**
- * Writes a basis file atomically: the constructor creates `<path>.partial` (replacing a stale
- * one) and, InBands, the scratch of the bands (a file without a name), both allocated on the
- * disk; WriteColumns writes into the scratch (InBands) or the payload (Whole); Commit()
- * transposes the scratch into the payload, writes the header, fsyncs and renames the partial
- * file to `path`. A writer destroyed without Commit() removes the partial file. Memory: the
- * source row of each output row (4 n bytes) and one tile while writing, two tiles (2
- * BasisFileTileBytes) while transposing.
+ * Writes a basis file atomically: the constructor creates the file without a name (O_TMPFILE;
+ * `<path>.partial`, replacing a stale one, where the file system lacks it) and, InBands, the
+ * scratch of the bands (without a name too), both allocated on the disk; WriteColumns writes into
+ * the scratch (InBands) or the payload (Whole); Commit() transposes the scratch into the payload,
+ * writes the header, fsyncs, names the file
+ * `<path>.partial` and renames it to `path`. A writer destroyed without Commit() leaves
+ * nothing; a process killed while it writes leaves nothing where the file system has
+ * O_TMPFILE. Memory: the source row of each output row (4 n bytes) and one tile while writing,
+ * two tiles (2 BasisFileTileBytes) while transposing.
  */
 class BasisFileWriter
 {
@@ -208,7 +211,8 @@ public:
    */
   void Commit(const BasisFileHeader& header);
 
-  /// The path being written (`<path>.partial`).
+  /// The name the file has just before the commit renames it (`<path>.partial`): while it is
+  /// written it has no name where the file system allows (O_TMPFILE), else this one.
   const std::string& PartialPath() const { return this->Partial; }
 
 private:
@@ -228,6 +232,8 @@ private:
   int Scratch = -1;
   std::uint64_t TileRows = 1;
   BasisFileWriting Writing;
+  /// Whether the file has no name yet (O_TMPFILE).
+  bool Unnamed = false;
   /// The source row of each output row (-1: none) of the last WriteColumns.
   std::vector<int> SourceOf;
   bool Committed = false;
