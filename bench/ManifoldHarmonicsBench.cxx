@@ -42,6 +42,7 @@
 #include "Filtering/Transfer.h"
 #include "Meshes.h"
 #include "Operators/PointCloud.h"
+#include "Solver/Bands.h"
 #include "Solver/SupernodalLDLT.h"
 
 #include <sys/resource.h>
@@ -168,8 +169,8 @@ double FilterStageMilliseconds(const View& H,
   parameters.Kind = spectral::FilterKind::LowPass;
   parameters.Cutoff = spectral::DefaultCutoffFraction;
   // The default of vtkSpectralFilter: half the highest computed frequency.
-  parameters = spectral::ToAbsoluteUnits(
-    parameters, spectral::FrequencyUnits::FractionOfHighest, lambda, 0.0);
+  parameters =
+    spectral::ToAbsoluteUnits(parameters, spectral::FrequencyUnits::FractionOfHighest, lambda, 0.0);
   const spectral::ConstRowView X(points.data(), points.rows(), points.cols());
   const spectral::ConstRowView C(coefficients.data(), coefficients.rows(), coefficients.cols());
   const double nyquist = spectral::NyquistFrequency(mesh);
@@ -423,6 +424,12 @@ int RunCase(const Settings& settings, int n, int m)
     result.MaxBackwardError,
     orthogonality,
     (filter + scipy).c_str());
+  // What the solver held of its eigenvectors at most, against the three bands the memory
+  // estimate counts when it does not keep them (Solver/Memory.h).
+  std::printf("%17s most eigenvector columns held %d (three bands: %d)\n",
+    "",
+    result.MostKeptVectors,
+    3 * spectral::detail::PairsPerBand(m, settings.BandSize, L.rows()));
   std::fflush(stdout);
   return 0;
 }

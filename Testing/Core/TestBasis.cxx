@@ -8,6 +8,7 @@
 #include "Checks.h"
 #include "Common/Eigenvalues.h"
 #include "Meshes.h"
+#include "Solver/Bands.h"
 
 #include <Eigen/Dense>
 
@@ -740,6 +741,12 @@ void SpectrumAloneInBands()
         1e-3 * kept.Pairs.MaxBackwardError &&
       std::abs(alone.Pairs.MaxResidual - kept.Pairs.MaxResidual) <= 1e-3 * kept.Pairs.MaxResidual,
     "verified as the harmonics are (the same worst figures)");
+  // The memory estimate of a solve that lets its vectors go counts three bands of them.
+  const int threeBands = 3 * detail::PairsPerBand(400, 0, 10242);
+  Check(alone.Pairs.MostKeptVectors > 0 && alone.Pairs.MostKeptVectors <= threeBands,
+    "the solve held at most three bands of vectors (" +
+      std::to_string(alone.Pairs.MostKeptVectors) + " columns, three bands " +
+      std::to_string(threeBands) + ")");
   const MemoryEstimate spectrumOnly = EstimateBasisMemory(10242, 10242, 400, 0, 0, false);
   const MemoryEstimate withVectors = EstimateBasisMemory(10242, 10242, 400, 0, 0, true);
   Check(spectrumOnly.Eigenvectors < withVectors.Eigenvectors,

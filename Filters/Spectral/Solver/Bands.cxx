@@ -533,6 +533,8 @@ void BandLoop::AcceptBand(const Band& band)
     this->L,
     this->M,
     this->Work);
+  this->Result.MostKeptVectors =
+    std::max(this->Result.MostKeptVectors, static_cast<int>(this->AcceptedPairs.Vectors.cols()));
   this->Complete = std::max(this->Complete, high);
   this->Result.Seconds.RayleighRitz += SecondsSince(this->Start);
   this->Report(static_cast<double>(this->AcceptedPairs.CountBelow(this->Complete)) / this->Count);

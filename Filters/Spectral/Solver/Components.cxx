@@ -153,6 +153,7 @@ void AddStatistics(EigenResult& total, const EigenResult& part)
   total.Bands += part.Bands;
   total.Factorizations += part.Factorizations;
   total.OperatorApplications += part.OperatorApplications;
+  total.MostKeptVectors = std::max(total.MostKeptVectors, part.MostKeptVectors);
   total.Seconds.Factorization += part.Seconds.Factorization;
   total.Seconds.Solve += part.Seconds.Solve;
   total.Seconds.Orthogonalization += part.Seconds.Orthogonalization;

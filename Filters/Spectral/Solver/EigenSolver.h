@@ -152,6 +152,10 @@ struct EigenResult
   /// Number of vectors solved with a factorization of L - sigma M: applications of
   /// (L - sigma M)^-1 M, and the refinement of bands whose residuals failed.
   long long OperatorApplications = 0;
+  /// The most eigenvector columns the band loop held at once (its block of accepted vectors,
+  /// after each merge). Without KeepEigenvectors the memory estimate counts three bands' worth
+  /// (EstimateBasisMemory, Solver/Memory.h).
+  int MostKeptVectors = 0;
   EigenTimings Seconds;
   /// The relative residual tolerance the pairs were verified to (EigenOptions::
   /// ResidualTolerance; a caller that relaxed it solved with the relaxed one).
