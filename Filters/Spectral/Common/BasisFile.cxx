@@ -456,6 +456,59 @@ std::uint64_t BasisFileDiskBytes(std::uint64_t n,
 namespace
 {
 //------------------------------------------------------------------------------
+// Gives the file without a name open as `descriptor` the name `name`: linkat through /proc, or
+// AT_EMPTY_PATH where the process may. False (errno set) when neither works.
+bool NameFile(int descriptor, const std::string& name)
+{
+  const std::string self = "/proc/self/fd/" + std::to_string(descriptor);
+  return linkat(AT_FDCWD, self.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0 ||
+    linkat(descriptor, "", AT_FDCWD, name.c_str(), AT_EMPTY_PATH) == 0;
+}
+
+//------------------------------------------------------------------------------
+// Copies the `bytes` of the file open as `descriptor` to a new file `name`, synced: where a file
+// without a name cannot be named (no /proc, no CAP_DAC_READ_SEARCH; linking is tried only at
+// the commit, since a file linked once cannot be linked again after its unlink). False (errno
+// set) on failure, the new file removed.
+bool CopyToName(int descriptor, std::uint64_t bytes, const std::string& name)
+{
+  const int copy = open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (copy < 0)
+  {
+    return false;
+  }
+  std::vector<char> buffer(std::min<std::uint64_t>(bytes, BasisFileTileBytes));
+  std::uint64_t done = 0;
+  bool ok = true;
+  while (ok && done < bytes)
+  {
+    const std::uint64_t size = std::min<std::uint64_t>(buffer.size(), bytes - done);
+    ok = ReadAll(descriptor, buffer.data(), size, done);
+    if (ok)
+    {
+      try
+      {
+        WriteAll(copy, buffer.data(), size, done, name);
+      }
+      catch (const BasisFileError&)
+      {
+        ok = false;
+      }
+    }
+    done += size;
+  }
+  ok = ok && fsync(copy) == 0;
+  const int error = errno;
+  close(copy);
+  if (!ok)
+  {
+    unlink(name.c_str());
+    errno = error;
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 // An unlinked file in `directory` for the scratch of `partial`: O_TMPFILE where the file system
 // has it (never has a name), else a new file named after `partial`, unlinked at once. -1 with
 // errno set when neither can be created.
@@ -754,9 +807,9 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     // The complete file gets the partial name (linkat through /proc, or AT_EMPTY_PATH where
     // the process may), then the final one by an atomic rename.
     unlink(this->Partial.c_str());
-    const std::string self = "/proc/self/fd/" + std::to_string(this->Descriptor);
-    if (linkat(AT_FDCWD, self.c_str(), AT_FDCWD, this->Partial.c_str(), AT_SYMLINK_FOLLOW) != 0 &&
-      linkat(this->Descriptor, "", AT_FDCWD, this->Partial.c_str(), AT_EMPTY_PATH) != 0)
+    if (!NameFile(this->Descriptor, this->Partial) &&
+      !CopyToName(
+        this->Descriptor, this->Header.PayloadOffset + this->Header.PayloadBytes(), this->Partial))
     {
       throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot name", this->Partial));
     }
