@@ -238,7 +238,7 @@ std::map<std::string, std::string> OptionLines(const std::string& text)
 // of `values` (leading dimension `rows`), 0 where sourceOf[r] is negative (`sourceOf` starts
 // at the tile's first row).
 template<typename T>
-void GatherTile(T* out,
+void GatherTileAs(T* out,
   const double* values,
   std::uint64_t rows,
   std::uint64_t count,
@@ -256,11 +256,30 @@ void GatherTile(T* out,
   }
 }
 
+/// GatherTileAs into values of `bytesPerValue` bytes (4: float, else double).
+void GatherTile(unsigned char* out,
+  std::uint32_t bytesPerValue,
+  const double* values,
+  std::uint64_t rows,
+  std::uint64_t count,
+  const int* sourceOf,
+  std::uint64_t tileRows)
+{
+  if (bytesPerValue == 4)
+  {
+    GatherTileAs(reinterpret_cast<float*>(out), values, rows, count, sourceOf, tileRows);
+  }
+  else
+  {
+    GatherTileAs(reinterpret_cast<double*>(out), values, rows, count, sourceOf, tileRows);
+  }
+}
+
 //------------------------------------------------------------------------------
 // Transposes a tile: `rowMajor` (rows x m) from `columnMajor` (leading dimension rows), in
 // blocks of rows so that both stay in the cache.
 template<typename T>
-void TransposeTile(T* rowMajor, const T* columnMajor, std::uint64_t rows, std::uint64_t m)
+void TransposeTileAs(T* rowMajor, const T* columnMajor, std::uint64_t rows, std::uint64_t m)
 {
   const std::uint64_t block = 64;
   for (std::uint64_t r0 = 0; r0 < rows; r0 += block)
@@ -274,6 +293,25 @@ void TransposeTile(T* rowMajor, const T* columnMajor, std::uint64_t rows, std::u
         rowMajor[r * m + c] = from[r];
       }
     }
+  }
+}
+
+/// TransposeTileAs on values of `bytesPerValue` bytes (4: float, else double).
+void TransposeTile(unsigned char* rowMajor,
+  const unsigned char* columnMajor,
+  std::uint32_t bytesPerValue,
+  std::uint64_t rows,
+  std::uint64_t m)
+{
+  if (bytesPerValue == 4)
+  {
+    TransposeTileAs(
+      reinterpret_cast<float*>(rowMajor), reinterpret_cast<const float*>(columnMajor), rows, m);
+  }
+  else
+  {
+    TransposeTileAs(
+      reinterpret_cast<double*>(rowMajor), reinterpret_cast<const double*>(columnMajor), rows, m);
   }
 }
 } // namespace
@@ -456,6 +494,14 @@ std::uint64_t BasisFileDiskBytes(std::uint64_t n,
 namespace
 {
 //------------------------------------------------------------------------------
+// A new file without a name (O_TMPFILE, read and write) in the directory of `beside`, or -1
+// (errno set) where the file system has none.
+int OpenUnnamed(const std::string& beside, mode_t mode)
+{
+  return open(DirectoryOf(beside).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, mode);
+}
+
+//------------------------------------------------------------------------------
 // Gives the file without a name open as `descriptor` the name `name`: linkat through /proc, or
 // AT_EMPTY_PATH where the process may. False (errno set) when neither works.
 bool NameFile(int descriptor, const std::string& name)
@@ -514,7 +560,7 @@ bool CopyToName(int descriptor, std::uint64_t bytes, const std::string& name)
 // errno set when neither can be created.
 int CreateScratch(const std::string& partial)
 {
-  const int unnamed = open(DirectoryOf(partial).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  const int unnamed = OpenUnnamed(partial, 0600);
   if (unnamed >= 0)
   {
     return unnamed;
@@ -558,7 +604,7 @@ BasisFileWriter::BasisFileWriter(const std::string& path,
   const std::uint64_t payload = this->Header.PayloadBytes();
   // Without a name until the commit (O_TMPFILE) where the file system allows: a solve killed on
   // the way (out of memory, a crash) leaves nothing behind. Else `<path>.partial`.
-  this->Descriptor = open(DirectoryOf(path).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0644);
+  this->Descriptor = OpenUnnamed(path, 0644);
   this->Unnamed = this->Descriptor >= 0;
   if (!this->Unnamed)
   {
@@ -687,18 +733,10 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
   {
     const std::uint64_t first = t * this->TileRows;
     const std::uint64_t tileRows = this->RowsOfTile(t);
-    const int* sourceOf = this->SourceOf.data() + first;
-    if (b == 4)
-    {
-      GatherTile(reinterpret_cast<float*>(tile.data()), values, rows, count, sourceOf, tileRows);
-    }
-    else
-    {
-      GatherTile(reinterpret_cast<double*>(tile.data()), values, rows, count, sourceOf, tileRows);
-    }
+    GatherTile(tile.data(), b, values, rows, count, this->SourceOf.data() + first, tileRows);
     if (this->Writing == BasisFileWriting::Whole)
     {
-      this->TransposeInto(transposed.data(), tile.data(), tileRows);
+      TransposeTile(transposed.data(), tile.data(), b, tileRows, m);
       WriteAll(this->Descriptor,
         transposed.data(),
         tileRows * m * b,
@@ -712,27 +750,6 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
       (first * m + firstColumn * tileRows) * b,
       this->Partial,
       "cannot write the scratch of");
-  }
-}
-
-//------------------------------------------------------------------------------
-void BasisFileWriter::TransposeInto(unsigned char* rowMajor,
-  const unsigned char* columnMajor,
-  std::uint64_t tileRows) const
-{
-  if (this->Header.BytesPerValue == 4)
-  {
-    TransposeTile(reinterpret_cast<float*>(rowMajor),
-      reinterpret_cast<const float*>(columnMajor),
-      tileRows,
-      this->Header.Columns);
-  }
-  else
-  {
-    TransposeTile(reinterpret_cast<double*>(rowMajor),
-      reinterpret_cast<const double*>(columnMajor),
-      tileRows,
-      this->Header.Columns);
   }
 }
 
@@ -774,7 +791,8 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
     {
       const std::uint64_t first = t * this->TileRows;
-      const std::uint64_t bytes = this->RowsOfTile(t) * m * b;
+      const std::uint64_t tileRows = this->RowsOfTile(t);
+      const std::uint64_t bytes = tileRows * m * b;
       errno = 0;
       if (!ReadAll(this->Scratch, reinterpret_cast<char*>(columns.data()), bytes, first * m * b))
       {
@@ -786,7 +804,7 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
         static_cast<off_t>(first * m * b),
         static_cast<off_t>(bytes),
         POSIX_FADV_DONTNEED);
-      this->TransposeInto(rows.data(), columns.data(), this->RowsOfTile(t));
+      TransposeTile(rows.data(), columns.data(), b, tileRows, m);
       WriteAll(
         this->Descriptor, rows.data(), bytes, final.PayloadOffset + first * m * b, this->Partial);
     }

@@ -219,10 +219,6 @@ private:
   void Discard();
   /// The rows of tile t: [t TileRows, min(n, (t + 1) TileRows)).
   std::uint64_t RowsOfTile(std::uint64_t t) const;
-  /// A tile of `tileRows` rows, from its rows column after column to row-major.
-  void TransposeInto(unsigned char* rowMajor,
-    const unsigned char* columnMajor,
-    std::uint64_t tileRows) const;
   std::string Path;
   std::string Partial;
   BasisFileHeader Header;
