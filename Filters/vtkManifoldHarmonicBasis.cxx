@@ -327,8 +327,11 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   const bool limited = self->GetMemoryLimit() > 0.0;
   const spectral::MemoryEstimate& need = e.Needed;
   std::ostringstream message;
-  message << "Not enough memory for " << m << " harmonics on " << numPts << " points: about "
-          << spectral::ByteCount(need.Total()) << " needed (basis "
+  // A streamed basis keeps no output basis: its Basis term is the blocks handed over, in
+  // doubles whatever BasisPrecision.
+  message << "Not enough memory for " << m << (e.Streamed ? " streamed" : "")
+          << " harmonics on " << numPts << " points: about " << spectral::ByteCount(need.Total())
+          << " needed (" << (e.Streamed ? "harmonics in delivery " : "basis ")
           << spectral::ByteCount(need.Basis) << ", solver eigenvectors "
           << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace and operators "
           << spectral::ByteCount(need.Krylov) << ", sparse factor "
@@ -336,7 +339,7 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
           << spectral::ByteCount(need.Overhead) << "), " << spectral::ByteCount(e.Available)
           << " available (" << (limited ? "MemoryLimit" : "reported by the system")
           << "). Compute fewer harmonics";
-  if (!floats)
+  if (!floats && !e.Streamed)
   {
     message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
             << ")";

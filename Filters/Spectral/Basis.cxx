@@ -558,10 +558,13 @@ double UnitScale(double diameter)
 //------------------------------------------------------------------------------
 InsufficientMemory::InsufficientMemory(const MemoryEstimate& needed,
   std::uint64_t available,
-  int harmonics)
-  : std::runtime_error("not enough memory for " + std::to_string(harmonics) + " harmonics: " +
-      std::to_string(needed.Total()) + " bytes needed, " + std::to_string(available) + " available")
+  int harmonics,
+  bool streamed)
+  : std::runtime_error("not enough memory for " + std::to_string(harmonics) +
+      (streamed ? " streamed" : "") + " harmonics: " + std::to_string(needed.Total()) +
+      " bytes needed, " + std::to_string(available) + " available")
   , Harmonics(harmonics)
+  , Streamed(streamed)
   , Needed(needed)
   , Available(available)
 {

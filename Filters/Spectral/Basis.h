@@ -169,9 +169,15 @@ struct BasisResult
 class InsufficientMemory : public std::runtime_error
 {
 public:
-  InsufficientMemory(const MemoryEstimate& needed, std::uint64_t available, int harmonics);
+  InsufficientMemory(const MemoryEstimate& needed,
+    std::uint64_t available,
+    int harmonics,
+    bool streamed);
   /// The number of harmonics the estimate is for (after clamping).
   int Harmonics;
+  /// Whether the estimate is of a streamed basis (BasisSink): its Basis term is then the blocks
+  /// in delivery, always doubles (EstimateStreamedMemory, Solver/Memory.h), not an output basis.
+  bool Streamed;
   /// The estimate of the computation.
   MemoryEstimate Needed;
   /// The memory that was available, in bytes.

@@ -212,7 +212,7 @@ int CheckMemory(const TriangleMesh& mesh,
         available);
   if (!plan.Fits)
   {
-    throw InsufficientMemory(plan.Estimate, available, m);
+    throw InsufficientMemory(plan.Estimate, available, m, static_cast<bool>(options.Sink.Harmonics));
   }
   if (plan.Shrunk)
   {

@@ -240,6 +240,24 @@ bool FileEqualsMemory(int precision)
         errors->GetErrorMessage().find("Not enough memory") != std::string::npos,
       label + "IN_MEMORY under the limit is refused");
   }
+  // A file under a limit that not even the stream into it fits: the stream's blocks in delivery
+  // are doubles, so a float basis would not help and is not offered.
+  {
+    vtkNew<vtkManifoldHarmonicBasis> refused;
+    refused->SetInputData(mesh);
+    refused->SetNumberOfHarmonics(Harmonics);
+    refused->SetBasisPrecision(precision);
+    refused->SetBandSize(BandSize);
+    refused->SetMemoryLimit(1.0);
+    refused->SetStorageToFile();
+    const ManifoldHarmonicsTest::Messages errors(refused);
+    refused->Update();
+    const std::string& message = errors->GetErrorMessage();
+    ok &= Check(errors->GetError() && message.find("streamed harmonics") != std::string::npos &&
+        message.find("harmonics in delivery") != std::string::npos &&
+        message.find("BasisPrecision") == std::string::npos,
+      label + "a stream into a file that does not fit is refused as a stream: " + message);
+  }
 
   vtkNew<vtkManifoldHarmonicBasis> file;
   file->SetInputData(mesh);
