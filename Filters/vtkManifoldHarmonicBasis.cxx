@@ -601,7 +601,8 @@ spectral::BasisFileHeader FileHeader(const vtkManifoldHarmonicsBasisFile::Plan& 
 void CommitBasisFile(spectral::BasisFileWriter& writer,
   spectral::BasisFileHeader& header,
   const spectral::BasisResult& basis,
-  const RowsToPoints& targets)
+  const RowsToPoints& targets,
+  const spectral::Monitor& monitor = spectral::Monitor())
 {
   header.Eigenvalues.assign(
     basis.Pairs.Eigenvalues.data(), basis.Pairs.Eigenvalues.data() + header.Columns);
@@ -613,7 +614,7 @@ void CommitBasisFile(spectral::BasisFileWriter& writer,
   header.BackwardError = basis.Pairs.MaxBackwardError;
   header.Residual = basis.Pairs.MaxResidual;
   header.Warnings = basis.Warnings;
-  writer.Commit(header);
+  writer.Commit(header, monitor);
 }
 
 //------------------------------------------------------------------------------
@@ -679,14 +680,17 @@ spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
   };
   // Every harmonic comes again: the file's columns are overwritten.
   options.Sink.Restart = []() {};
-  spectral::BasisResult basis = spectral::ComputeBasis(mesh, options, monitor);
+  // The commit moves the basis through the disk twice: the last tenth of the progress, its own
+  // stage.
+  spectral::BasisResult basis = spectral::ComputeBasis(mesh, options, monitor.Scaled(0.0, 0.9));
   if (!writer || static_cast<std::uint64_t>(basis.Pairs.Eigenvalues.size()) != header.Columns)
   {
     throw std::runtime_error("the streamed basis has " +
       std::to_string(basis.Pairs.Eigenvalues.size()) + " harmonics, its file was sized for " +
       std::to_string(header.Columns) + " (please report this)");
   }
-  CommitBasisFile(*writer, header, basis, targets);
+  monitor.Begin("Write basis file");
+  CommitBasisFile(*writer, header, basis, targets, monitor.Scaled(0.9, 1.0));
   return basis;
 }
 

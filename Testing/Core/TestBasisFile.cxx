@@ -6,6 +6,7 @@
 #include "Checks.h"
 #include "Common/BasisFile.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -344,6 +345,52 @@ void UncommittedLeavesNothing()
 }
 
 //------------------------------------------------------------------------------
+// The commit reports its progress tile by tile and stops where it is cancelled, leaving the file
+// uncommitted: the complete file already under the name stays, no partial file is left.
+void CommitProgressAndCancel()
+{
+  const std::string path = TempPath("commit.mhb");
+  const Sample s = MakeSample(50, 10, 8);
+  const std::uint64_t tileBytes = 7 * 10 * 8; // tiles of 7 rows: 8 tiles
+  {
+    BasisFileWriter writer(path, s.Header, BasisFileWriting::InBands, tileBytes);
+    writer.WriteColumns(0, 10, s.Block.data(), 50, s.Sources, s.Targets);
+    std::vector<double> reports;
+    Monitor monitor;
+    monitor.Progress = [&](double f) { reports.push_back(f); };
+    writer.Commit(s.Header, monitor);
+    Check(reports.size() >= 8 && reports.front() == 0.0 && reports.back() == 1.0 &&
+        std::is_sorted(reports.begin(), reports.end()),
+      "the commit reports from 0 to 1, tile by tile (" + std::to_string(reports.size()) +
+        " reports)");
+  }
+  const BasisFileHeader before = ReadBasisFileHeader(path);
+  Sample other = MakeSample(50, 10, 8);
+  other.Header.Options += "BandSize=7\n";
+  int reports = 0;
+  bool cancelled = false;
+  {
+    BasisFileWriter writer(path, other.Header, BasisFileWriting::InBands, tileBytes);
+    writer.WriteColumns(0, 10, other.Block.data(), 50, other.Sources, other.Targets);
+    Monitor monitor;
+    monitor.Progress = [&](double) { ++reports; };
+    monitor.Cancelled = [&]() { return reports >= 3; };
+    try
+    {
+      writer.Commit(other.Header, monitor);
+    }
+    catch (const Cancelled&)
+    {
+      cancelled = true;
+    }
+  }
+  Check(cancelled && reports == 3, "a cancelled commit stops at the next tile");
+  Check(ReadBasisFileHeader(path).Options == before.Options && !Exists(path + ".partial"),
+    "and leaves the file under the name as it was, and no partial file");
+  std::remove(path.c_str());
+}
+
+//------------------------------------------------------------------------------
 void KilledLeavesNothing()
 {
   // A process killed while it writes (out of memory: no destructor runs) leaves neither the
@@ -417,6 +464,7 @@ const Case Cases[] = {
   { "InvalidWritesRefused", InvalidWritesRefused },
   { "DamagedAndForeignFiles", DamagedAndForeignFiles },
   { "UncommittedLeavesNothing", UncommittedLeavesNothing },
+  { "CommitProgressAndCancel", CommitProgressAndCancel },
   { "KilledLeavesNothing", KilledLeavesNothing },
   { "StorageChoiceRules", StorageChoiceRules },
   { "DigestAndOptions", DigestAndOptions },

@@ -754,7 +754,7 @@ void BasisFileWriter::WriteColumns(std::uint64_t firstColumn,
 }
 
 //------------------------------------------------------------------------------
-void BasisFileWriter::Commit(const BasisFileHeader& header)
+void BasisFileWriter::Commit(const BasisFileHeader& header, const Monitor& monitor)
 {
   BasisFileHeader final = header;
   std::uint64_t warningBytes = 0;
@@ -791,6 +791,8 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     for (std::uint64_t t = 0; t * this->TileRows < n; ++t)
     {
       const std::uint64_t first = t * this->TileRows;
+      monitor.ThrowIfCancelled();
+      monitor.Report(static_cast<double>(first) / static_cast<double>(n));
       const std::uint64_t tileRows = this->RowsOfTile(t);
       const std::uint64_t bytes = tileRows * m * b;
       errno = 0;
@@ -814,6 +816,7 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     close(this->Scratch);
     this->Scratch = -1;
   }
+  monitor.ThrowIfCancelled();
   WriteAll(this->Descriptor, FixedHeader(final, variable), 0, this->Partial);
   WriteAll(this->Descriptor, variable, FixedBytes, this->Partial);
   if (fsync(this->Descriptor) != 0)
@@ -846,6 +849,7 @@ void BasisFileWriter::Commit(const BasisFileHeader& header)
     fsync(directory);
     close(directory);
   }
+  monitor.Report(1.0);
 }
 
 //------------------------------------------------------------------------------

@@ -45,6 +45,8 @@
 #ifndef spectral_BasisFile_h
 #define spectral_BasisFile_h
 
+#include "Common/Monitor.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -207,9 +209,13 @@ public:
   /**
    * Completes the file: the payload from the scratch, its header (eigenvalues, figures and
    * warnings known only at the end may be set in `header`; n, m, b must not change), fsync,
-   * rename to the final name, fsync of the directory. \throws BasisFileError (Io).
+   * rename to the final name, fsync of the directory. The payload is moved tile after tile
+   * (twice the basis through the disk: minutes for tens of GiB): `monitor` receives the fraction
+   * of it done, and a cancellation between two tiles leaves the file uncommitted, as a writer
+   * destroyed without Commit.
+   * \throws BasisFileError (Io); spectral::Cancelled when monitor.Cancelled returned true.
    */
-  void Commit(const BasisFileHeader& header);
+  void Commit(const BasisFileHeader& header, const Monitor& monitor = Monitor());
 
   /// The name the file has just before the commit renames it (`<path>.partial`): while it is
   /// written it has no name where the file system allows (O_TMPFILE), else this one.
