@@ -1054,6 +1054,12 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
     // The output basis is in the file: the memory check of the solve leaves it out.
     options.BytesPerValue = 0;
   }
+  if (!solution.File.Path.empty() && !solution.File.Reuse && options.MemoryLimit > 0)
+  {
+    // The writer holds its memory beside the solve: the solve plans in the rest of the limit, as
+    // the storage choice did (vtkManifoldHarmonicsBasisFile::PlanStorage).
+    options.MemoryLimit = spectral::MemoryShare(options.MemoryLimit, solution.File.WriterBytes);
+  }
   return this->Guard(
            [&]()
            {

@@ -145,12 +145,10 @@ std::uint64_t StreamedFilterBytes(std::uint64_t n)
 
 //------------------------------------------------------------------------------
 // The memory a streamed solve of n points may take, in bytes: `available` (MemoryLimit or the
-// system's) less the filter's own arrays, at least one byte (0 would mean the system's); 0 when
-// nothing is known.
+// system's) less the filter's own arrays (spectral::MemoryShare).
 std::uint64_t StreamedSolveBytes(std::uint64_t available, std::uint64_t n)
 {
-  const std::uint64_t arrays = StreamedFilterBytes(n);
-  return available == 0 ? 0 : (available > arrays ? available - arrays : 1);
+  return spectral::MemoryShare(available, StreamedFilterBytes(n));
 }
 
 //------------------------------------------------------------------------------

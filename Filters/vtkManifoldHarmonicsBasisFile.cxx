@@ -208,8 +208,16 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   // delivery (Memory.h). A frequency window is not streamed.
   const std::uint64_t written =
     spectral::PlanBasisMemory(n, n, m, band, 0, true, volume, available).Estimate.Total();
+  // Streamed, with the writer's memory beside the solve (BasisFileWriterBytes), which the
+  // solve's share of the limit leaves out (MemoryShare).
+  const std::uint64_t writer = spectral::BasisFileWriterBytes(n,
+    static_cast<std::uint64_t>(m),
+    static_cast<std::uint32_t>(options.BytesPerValue),
+    spectral::StreamedBlockColumns);
   const std::uint64_t streaming =
-    spectral::PlanStreamedMemory(n, n, m, band, volume, available).Estimate.Total();
+    spectral::PlanStreamedMemory(n, n, m, band, volume, spectral::MemoryShare(available, writer))
+      .Estimate.Total() +
+    writer;
   const bool streamed = options.UpperFrequency <= 0.0 && streaming <= written;
   const std::uint64_t inFile = streamed ? streaming : written;
   const std::string path = name.empty() ? TemporaryPath() : name;
@@ -233,6 +241,7 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
     plan.Path = path;
     plan.Temporary = name.empty();
     plan.Streamed = streamed;
+    plan.WriterBytes = streamed ? writer : 0;
     used = vtkManifoldHarmonicBasis::FILE;
     reason = "the basis is kept " + choice.Reason + ", in '" + path + "', " +
       (streamed ? "streamed into it band by band" : "computed in memory, then written");

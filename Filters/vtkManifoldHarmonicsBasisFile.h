@@ -45,6 +45,10 @@ struct Plan
   /// Whether the basis is streamed into the file (spectral::BasisSink: never whole in memory);
   /// false for a frequency window, which is computed in memory and then written.
   bool Streamed = false;
+  /// The memory of the file's writer beside a solve streamed into it
+  /// (spectral::BasisFileWriterBytes; 0 when not streamed): the solve plans in the rest of a
+  /// MemoryLimit.
+  std::uint64_t WriterBytes = 0;
   /// The checked header of the reused file.
   spectral::BasisFileHeader Header;
   /// The digest of the mesh and the options text that a new file records.

@@ -477,6 +477,12 @@ BasisFileHeader ReadBasisFileHeader(const std::string& path)
 }
 
 //------------------------------------------------------------------------------
+std::uint64_t RowsPerTile(std::uint64_t m, std::uint32_t b, std::uint64_t tileBytes)
+{
+  return std::max<std::uint64_t>(1, tileBytes / std::max<std::uint64_t>(1, m * b));
+}
+
+//------------------------------------------------------------------------------
 std::uint64_t BasisFileDiskBytes(std::uint64_t n,
   std::uint64_t m,
   std::uint32_t b,
@@ -489,6 +495,15 @@ std::uint64_t BasisFileDiskBytes(std::uint64_t n,
   const std::uint64_t payload = n * m * b;
   return (header + page - 1) / page * page +
     (writing == BasisFileWriting::InBands ? 2 * payload : payload);
+}
+
+//------------------------------------------------------------------------------
+std::uint64_t BasisFileWriterBytes(std::uint64_t n,
+  std::uint64_t m,
+  std::uint32_t b,
+  std::uint64_t columns)
+{
+  return 16 * n + std::min(n, RowsPerTile(m, b, BasisFileTileBytes)) * std::min(columns, m) * b;
 }
 
 namespace
@@ -599,8 +614,7 @@ BasisFileWriter::BasisFileWriter(const std::string& path,
   sized.Mass.resize(header.Rows);
   const std::uint64_t used = FixedBytes + VariableHeader(sized).size() + WarningRoom;
   this->Header.PayloadOffset = (used + page - 1) / page * page;
-  const std::uint64_t rowBytes = std::max<std::uint64_t>(1, header.Columns * header.BytesPerValue);
-  this->TileRows = std::max<std::uint64_t>(1, tileBytes / rowBytes);
+  this->TileRows = RowsPerTile(header.Columns, header.BytesPerValue, tileBytes);
   const std::uint64_t payload = this->Header.PayloadBytes();
   // Without a name until the commit (O_TMPFILE) where the file system allows: a solve killed on
   // the way (out of memory, a crash) leaves nothing behind. Else `<path>.partial`.

@@ -162,6 +162,24 @@ std::uint64_t BasisFileDiskBytes(std::uint64_t n,
   std::uint32_t b,
   BasisFileWriting writing);
 
+/// Rows of a tile of `tileBytes` (BasisFileTileBytes) in a file of m values of b bytes a row:
+/// as many whole rows as fit, at least one.
+std::uint64_t RowsPerTile(std::uint64_t m, std::uint32_t b, std::uint64_t tileBytes);
+
+/**
+ * The memory of a basis file's writing beside a solve that streams into it (InBands) in blocks of
+ * at most `columns` columns, while the solve runs: the writer's source row of each output row
+ * (4 n bytes), the caller's map from the solve's rows to the file's (a 4-byte row and an 8-byte
+ * point a row: 12 n bytes) and the tile being gathered (RowsPerTile rows of the block). The
+ * memory plans of a solve streamed into a file add it to the solve's estimate and give the solve
+ * the rest of the limit. A basis written Whole is written after its solve, in the memory the
+ * solve's workspace has freed; the commit's two tiles come after the solve too.
+ */
+std::uint64_t BasisFileWriterBytes(std::uint64_t n,
+  std::uint64_t m,
+  std::uint32_t b,
+  std::uint64_t columns);
+
 /**
  * Writes a basis file atomically: the constructor creates the file without a name (O_TMPFILE;
  * `<path>.partial`, replacing a stale one, where the file system lacks it) and, InBands, the

@@ -136,6 +136,12 @@ MemoryPlan PlanStreamedMemory(std::uint64_t n,
 }
 
 //------------------------------------------------------------------------------
+std::uint64_t MemoryShare(std::uint64_t available, std::uint64_t reserved)
+{
+  return available == 0 ? 0 : (available > reserved ? available - reserved : 1);
+}
+
+//------------------------------------------------------------------------------
 std::uint64_t AvailableMemory()
 {
   const std::uint64_t fromProc = MemAvailableFromProc();

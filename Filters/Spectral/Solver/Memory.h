@@ -168,6 +168,13 @@ MemoryPlan PlanStreamedMemory(std::uint64_t n,
   std::uint64_t available);
 
 /**
+ * The share of `available` bytes (MemoryLimit or the system's) left to a solve whose caller
+ * holds `reserved` bytes beside it (a smoothing's sums, a basis file's writer): at least one
+ * byte, since 0 means unknown; 0 when `available` is unknown.
+ */
+std::uint64_t MemoryShare(std::uint64_t available, std::uint64_t reserved);
+
+/**
  * The memory available to a new computation, in bytes: MemAvailable of /proc/meminfo on Linux
  * (free memory plus the caches the kernel can drop), otherwise the free physical pages reported
  * by sysconf(_SC_AVPHYS_PAGES).
