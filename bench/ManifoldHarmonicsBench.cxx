@@ -426,10 +426,14 @@ int RunCase(const Settings& settings, int n, int m)
     (filter + scipy).c_str());
   // What the solver held of its eigenvectors at most, against the three bands the memory
   // estimate counts when it does not keep them (Solver/Memory.h).
-  std::printf("%17s most eigenvector columns held %d (three bands: %d)\n",
+  // and the widest Krylov basis of a band, which a retry does not widen (RetryPairs, Bands.h).
+  std::printf("%17s most eigenvector columns held %d (three bands: %d), widest Krylov basis %d "
+              "columns, %d band(s) run again\n",
     "",
     result.MostKeptVectors,
-    3 * spectral::detail::PairsPerBand(m, settings.BandSize, L.rows()));
+    3 * spectral::detail::PairsPerBand(m, settings.BandSize, L.rows()),
+    result.MostKrylovColumns,
+    result.Retries);
   std::fflush(stdout);
   return 0;
 }

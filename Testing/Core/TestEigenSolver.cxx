@@ -317,6 +317,36 @@ void RefinedBands()
 }
 
 //------------------------------------------------------------------------------
+void RetriesHoldNoMore()
+{
+  // Bands allowed too few restarts stall and are run again (EigenResult::Retries), each retry
+  // with fewer pairs in the same subspace (RetryPairs, Bands.h): the pairs equal those of the
+  // unhurried solve and no band holds more Krylov columns than a first run, which the memory
+  // estimate counts. (Before, each retry enlarged the subspace by half a first run's: a
+  // 2,000,000-point solve grew by gigabytes beyond its plan.)
+  const TriangleMesh mesh = testing::NoisyTorus(80, 28, 0.05);
+  const Problem p = Lumped(mesh);
+  const int m = 100;
+  EigenOptions unhurried;
+  unhurried.BandSize = 20;
+  const EigenResult reference = Solve(p, m, unhurried);
+  Check(reference.MostKrylovColumns > 0, "the first runs' Krylov basis is counted");
+  for (const int restarts : { 2, 3 })
+  {
+    EigenOptions hurried = unhurried;
+    hurried.MaxIterations = restarts;
+    const EigenResult r = Solve(p, m, hurried);
+    const std::string name = "at most " + std::to_string(restarts) + " restarts a band";
+    CheckPairs(p, r, name);
+    Check(r.Retries > 0, name + ": " + std::to_string(r.Retries) + " bands run again");
+    CheckSameValues(reference.Eigenvalues, r.Eigenvalues, 1e-9, name + " vs unhurried");
+    Check(r.MostKrylovColumns <= reference.MostKrylovColumns,
+      name + ": at most " + std::to_string(r.MostKrylovColumns) + " Krylov columns, a first run " +
+        std::to_string(reference.MostKrylovColumns));
+  }
+}
+
+//------------------------------------------------------------------------------
 void BandSeams()
 {
   // m = 64 ends with the whole multiplet l = 7; narrow bands cut through the multiplets.
@@ -756,6 +786,7 @@ const Case Cases[] = {
   { "RefinedBands", RefinedBands },
   { "MethodsAgree", MethodsAgree },
   { "SpectrumAlone", SpectrumAlone },
+  { "RetriesHoldNoMore", RetriesHoldNoMore },
   { "StartAbove", StartAbove },
   { "InertiaCounts", InertiaCounts },
   { "Cancellation", Cancellation },

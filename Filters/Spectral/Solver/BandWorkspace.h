@@ -22,14 +22,20 @@ struct BandRequest
 {
   /// The shift sigma of L - sigma M.
   double Sigma = 0.0;
-  /// nev, the number of pairs nearest the shift.
+  /// nev, the number of pairs nearest the shift: the loop's band at the first attempt, fewer
+  /// at a retry (RetryPairs, Bands.h).
   int Pairs = 0;
-  /// 0 for the first run at this shift; later runs start elsewhere with a larger subspace.
+  /// 0 for the first run at this shift; later runs start elsewhere, with fewer pairs in the
+  /// same subspace.
   int Attempt = 0;
   /// The first non-zero eigenvalue, the scale of relative residuals; <= 0 when not yet known.
   double LambdaReference = 0.0;
   /// The spacing of the eigenvalues near the shift; 0 before the first band.
   double MeanGap = 0.0;
+  /// The pairs the band's Krylov subspace is sized for: the loop's band, whatever the attempt,
+  /// so that a retry holds no more vectors than the first run (the memory estimate counts those,
+  /// Solver/Memory.h).
+  int SubspacePairs = 0;
 };
 
 /// Eigenvalues of one band, sorted ascending; the vectors are the first columns of

@@ -45,6 +45,12 @@ int EffectiveBandSize(int m, int bandSize)
 namespace detail
 {
 //------------------------------------------------------------------------------
+int RetryPairs(int pairs, int attempt)
+{
+  return attempt <= 0 ? pairs : std::max(1, 2 * pairs / (attempt + 2));
+}
+
+//------------------------------------------------------------------------------
 int PairsPerBand(int m, int bandSize, Eigen::Index n)
 {
   return static_cast<int>(
@@ -434,9 +440,12 @@ bool BandLoop::FactorAtShift()
 bool BandLoop::RunBand(Band& band)
 {
   this->Start = Clock::now();
-  const BandRequest request{
-    this->Sigma, this->Nev, this->Attempt, this->Reference, this->MeanGap
-  };
+  const BandRequest request{ this->Sigma,
+    RetryPairs(this->Nev, this->Attempt),
+    this->Attempt,
+    this->Reference,
+    this->MeanGap,
+    this->Nev };
   if (this->Options.Method == LanczosMethod::Spectra)
   {
     band = RunSpectraBand(this->Factor, this->M, request, this->Options, this->Watch, this->Work);
@@ -457,11 +466,12 @@ bool BandLoop::RunBand(Band& band)
   }
   catch (const SolverFailure&)
   {
-    // The band stalled: once more from another start vector with a larger subspace.
+    // The band stalled: once more from another start vector, fewer pairs in the same subspace.
     if (++this->Attempt > 3)
     {
       throw;
     }
+    ++this->Result.Retries;
     return false;
   }
   catch (const ShiftTooClose& moved)
@@ -612,6 +622,7 @@ void BandLoop::RollBack(const std::string& what)
   {
     throw SolverFailure(what, this->AcceptedPairs.CountBelow(this->Proven));
   }
+  ++this->Result.Retries;
   this->AcceptedPairs.Values.resize(
     std::max(this->AcceptedPairs.Fixed, this->AcceptedPairs.CountBelow(this->Proven)));
   this->Complete = this->Proven;

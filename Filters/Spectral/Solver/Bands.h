@@ -21,7 +21,10 @@
  * its pairs span around the shift; where two bands overlap, their vectors are merged by a
  * Rayleigh-Ritz step on the joint span (Merge). After each band the inertia of L - sigma M
  * (Factorization.h) must equal the number of accepted eigenvalues below sigma; otherwise what
- * is not proven is dropped and the band is retried (at most three times).
+ * is not proven is dropped and the band is retried (at most three times). A retry (a band that
+ * stalled or an inertia count that disagreed) starts from another vector and asks for fewer
+ * pairs in the same Krylov subspace (RetryPairs: 2 nev / (attempt + 2)), so that it holds no more
+ * vectors than the first run, which the memory plan counts (Memory.h).
  *
  * Pairs that start higher (EigenOptions::StartIndex > 0): the eigenvalues below StartValue
  * count as found (their number is the caller's inertia proof), the first shift lies above
@@ -74,6 +77,10 @@ struct MassMatrix;
 
 /// nev, the pairs each band asks for: min(EffectiveBandSize(m, bandSize), SingleBandSize(m), n/2).
 int PairsPerBand(int m, int bandSize, Eigen::Index n);
+
+/// The pairs a band of `pairs` asks for at retry `attempt` (0: the first run): 2 pairs /
+/// (attempt + 2), at least 1, in the subspace of the first run (BandRequest::SubspacePairs).
+int RetryPairs(int pairs, int attempt);
 
 /**
  * What a solve that does not keep its eigenvectors does with the pairs it lets go: verify them

@@ -43,10 +43,12 @@ void CheckShift(const DenseMatrix& T, double sigma, double meanGap)
   }
 }
 
-/// Columns of the Krylov basis the band may use: throws if the band does not fit n unknowns.
-Eigen::Index SubspaceSize(Eigen::Index n, Eigen::Index b, int nev, int attempt)
+/// Columns of the Krylov basis a band of nev pairs may use, sized for `sized` pairs (at least
+/// nev; BandRequest::SubspacePairs): throws if the band does not fit n unknowns.
+Eigen::Index SubspaceSize(Eigen::Index n, Eigen::Index b, int nev, int sized)
 {
-  Eigen::Index maxDim = std::max<Eigen::Index>(3 * nev + 2 * b, nev + 6 * b) * (attempt + 2) / 2;
+  const Eigen::Index k = std::max(nev, sized);
+  Eigen::Index maxDim = std::max<Eigen::Index>(3 * k + 2 * b, k + 6 * b);
   maxDim = std::min<Eigen::Index>(maxDim, n - b);
   if (maxDim < nev + b)
   {
@@ -192,7 +194,7 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
   , Start(Clock::now())
   , N(M.Matrix.rows())
   , B(std::min<Eigen::Index>(std::max(8, std::min(16, request.Pairs / 8)), this->N / 4 + 1))
-  , MaxDim(SubspaceSize(this->N, this->B, request.Pairs, request.Attempt))
+  , MaxDim(SubspaceSize(this->N, this->B, request.Pairs, request.SubspacePairs))
   , Wanted(std::max(1, (4 * request.Pairs) / 5))
   , Generator(20080415u + 7919u * static_cast<unsigned>(request.Attempt))
   , V(Workspace::Columns(work.Basis, this->N, this->MaxDim + this->B))
@@ -200,6 +202,8 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
   , W(this->N, this->B)
   , Filled(this->B)
 {
+  stats.MostKrylovColumns =
+    std::max(stats.MostKrylovColumns, static_cast<int>(this->MaxDim + this->B));
   std::uniform_real_distribution<double> uniform(-0.5, 0.5);
   for (Eigen::Index j = 0; j < this->B; ++j)
   {

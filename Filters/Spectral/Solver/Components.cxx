@@ -154,6 +154,8 @@ void AddStatistics(EigenResult& total, const EigenResult& part)
   total.Factorizations += part.Factorizations;
   total.OperatorApplications += part.OperatorApplications;
   total.MostKeptVectors = std::max(total.MostKeptVectors, part.MostKeptVectors);
+  total.Retries += part.Retries;
+  total.MostKrylovColumns = std::max(total.MostKrylovColumns, part.MostKrylovColumns);
   total.Seconds.Factorization += part.Seconds.Factorization;
   total.Seconds.Solve += part.Seconds.Solve;
   total.Seconds.Orthogonalization += part.Seconds.Orthogonalization;

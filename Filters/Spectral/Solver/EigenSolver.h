@@ -156,6 +156,13 @@ struct EigenResult
   /// after each merge). Without KeepEigenvectors the memory estimate counts three bands' worth
   /// (EstimateBasisMemory, Solver/Memory.h).
   int MostKeptVectors = 0;
+  /// Bands run again, from another start with fewer pairs: after a band stalled or an inertia
+  /// count disagreed (Bands.h).
+  int Retries = 0;
+  /// The most columns a band's Krylov basis held (the block iteration, LanczosMethod::Block). A
+  /// retry holds no more than a first run (RetryPairs, Bands.h): the memory estimate counts
+  /// those (Solver/Memory.h).
+  int MostKrylovColumns = 0;
   EigenTimings Seconds;
   /// The relative residual tolerance the pairs were verified to (EigenOptions::
   /// ResidualTolerance; a caller that relaxed it solved with the relaxed one).

@@ -15,8 +15,10 @@
  *                               alone (no eigenvectors kept, EigenOptions::KeepEigenvectors)
  *                               needs nUsed min(m, 3 k) 8: the vectors its seams still need
  *   + nUsed (9 k / 2 + 100) 8   the Lanczos workspace of a band of k pairs: its Krylov basis
- *                               (3 k and three blocks), the images of its Ritz vectors and of
- *                               the joint span of a merge (up to 3 k / 2), block products, and
+ *                               (3 k and three blocks; a retry of the band asks for fewer pairs
+ *                               in the same basis, RetryPairs in Bands.h), the images of its
+ *                               Ritz vectors and of the joint span of a merge (up to 3 k / 2),
+ *                               block products, and
  *                               the mesh and sparse operators (about 50 values a point)
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
@@ -42,7 +44,8 @@
  * a time, as harmonics, and again on the output's rows): EstimateStreamedMemory, independent of
  * m once m > 3 k, below a double in-memory estimate once m > 2 StreamedBlockColumns (128).
  * A caller that accumulates what it receives adds its own arrays (vtkManifoldHarmonicSmoothing:
- * the signals' sums).
+ * the signals' sums; a basis file: its writer, BasisFileWriterBytes) and gives the solve the rest
+ * of the limit (MemoryShare).
  *
  * Memory planning (PlanBasisMemory, PlanStreamedMemory) chooses instead of refusing where it can:
  * when the estimate at the automatic band size does not fit, smaller bands (down to

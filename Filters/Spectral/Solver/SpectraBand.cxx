@@ -132,8 +132,10 @@ Band RunSpectraBand(const ShiftedFactor& factor,
 {
   const Eigen::Index n = M.Matrix.rows();
   const int nev = request.Pairs;
-  const int ncv = static_cast<int>(
-    std::min<Eigen::Index>(n, std::max(2 * nev + 1, nev + 20) + request.Attempt * nev));
+  // The subspace of the loop's band (BandRequest::SubspacePairs) at every attempt: a retry asks
+  // for fewer pairs in it.
+  const int sized = std::max(nev, request.SubspacePairs);
+  const int ncv = static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * sized + 1, sized + 20)));
   ShiftInvertOp op(factor, M, monitor, n);
   MassOp mass(M.Matrix);
   ShiftInvertSolver eigs(op, mass, nev, ncv, request.Sigma);
