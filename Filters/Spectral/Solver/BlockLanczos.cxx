@@ -430,7 +430,7 @@ BlockLanczosBand::Counts BlockLanczosBand::CountConverged(const RitzPairs& ritz)
 // When two restarts bring no new pair, rounding bounds the attainable residual (it grows with
 // lambda_max / lambda_1, i.e. with the mesh size): relax the margin, up to half the tolerance
 // that the caller verifies. A band that still stalls gives up (fails unless enough pairs
-// converged), and the caller starts it afresh with a larger subspace.
+// converged), and the caller starts it afresh, with fewer pairs in the same subspace (RetryPairs).
 void BlockLanczosBand::TrackStall(int converged)
 {
   if (converged > this->MostConverged)

@@ -25,7 +25,8 @@ namespace detail
 /**
  * The request.Pairs eigenpairs nearest request.Sigma with Spectra's shift-invert Lanczos in the
  * M inner product, on `factor` (already factored at the shift). Attempt 0 starts from Spectra's
- * default vector, later attempts from other random vectors and with a larger subspace.
+ * default vector, later attempts (fewer pairs, RetryPairs in Bands.h) from other random vectors
+ * in the subspace of the first (BandRequest::SubspacePairs).
  * \param M the mass matrix of the pencil (the identity after a diagonal mass is scaled) and the
  *        null vectors the iteration stays M-orthogonal to.
  * \param monitor polled for cancellation before every operator application.
