@@ -329,13 +329,12 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
   std::ostringstream message;
   // A streamed basis keeps no output basis: its Basis term is the blocks handed over, in
   // doubles whatever BasisPrecision.
-  message << "Not enough memory for " << m << (e.Streamed ? " streamed" : "")
-          << " harmonics on " << numPts << " points: about " << spectral::ByteCount(need.Total())
-          << " needed (" << (e.Streamed ? "harmonics in delivery " : "basis ")
-          << spectral::ByteCount(need.Basis) << ", solver eigenvectors "
-          << spectral::ByteCount(need.Eigenvectors) << ", Lanczos workspace and operators "
-          << spectral::ByteCount(need.Krylov) << ", sparse factor "
-          << spectral::ByteCount(need.Factor) << ", the process's own "
+  message << "Not enough memory for " << m << (e.Streamed ? " streamed" : "") << " harmonics on "
+          << numPts << " points: about " << spectral::ByteCount(need.Total()) << " needed ("
+          << (e.Streamed ? "harmonics in delivery " : "basis ") << spectral::ByteCount(need.Basis)
+          << ", solver eigenvectors " << spectral::ByteCount(need.Eigenvectors)
+          << ", Lanczos workspace and operators " << spectral::ByteCount(need.Krylov)
+          << ", sparse factor " << spectral::ByteCount(need.Factor) << ", the process's own "
           << spectral::ByteCount(need.Overhead) << "), " << spectral::ByteCount(e.Available)
           << " available (" << (limited ? "MemoryLimit" : "reported by the system")
           << "). Compute fewer harmonics";
@@ -1054,7 +1053,7 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
     // The output basis is in the file: the memory check of the solve leaves it out.
     options.BytesPerValue = 0;
   }
-  if (!solution.File.Path.empty() && !solution.File.Reuse && options.MemoryLimit > 0)
+  if (solution.File.WriterBytes > 0 && options.MemoryLimit > 0)
   {
     // The writer holds its memory beside the solve: the solve plans in the rest of the limit, as
     // the storage choice did (vtkManifoldHarmonicsBasisFile::PlanStorage).

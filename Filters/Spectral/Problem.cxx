@@ -212,7 +212,8 @@ int CheckMemory(const TriangleMesh& mesh,
         available);
   if (!plan.Fits)
   {
-    throw InsufficientMemory(plan.Estimate, available, m, static_cast<bool>(options.Sink.Harmonics));
+    throw InsufficientMemory(
+      plan.Estimate, available, m, static_cast<bool>(options.Sink.Harmonics));
   }
   if (plan.Shrunk)
   {

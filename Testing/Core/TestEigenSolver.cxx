@@ -331,6 +331,9 @@ void RetriesHoldNoMore()
   unhurried.BandSize = 20;
   const EigenResult reference = Solve(p, m, unhurried);
   Check(reference.MostKrylovColumns > 0, "the first runs' Krylov basis is counted");
+  // Which bands stall depends on rounding; that some do, in one run or the other, does not
+  // (here 13 and 3 retries).
+  int retries = 0;
   for (const int restarts : { 2, 3 })
   {
     EigenOptions hurried = unhurried;
@@ -338,12 +341,13 @@ void RetriesHoldNoMore()
     const EigenResult r = Solve(p, m, hurried);
     const std::string name = "at most " + std::to_string(restarts) + " restarts a band";
     CheckPairs(p, r, name);
-    Check(r.Retries > 0, name + ": " + std::to_string(r.Retries) + " bands run again");
+    retries += r.Retries;
     CheckSameValues(reference.Eigenvalues, r.Eigenvalues, 1e-9, name + " vs unhurried");
     Check(r.MostKrylovColumns <= reference.MostKrylovColumns,
       name + ": at most " + std::to_string(r.MostKrylovColumns) + " Krylov columns, a first run " +
         std::to_string(reference.MostKrylovColumns));
   }
+  Check(retries > 0, std::to_string(retries) + " bands run again");
 }
 
 //------------------------------------------------------------------------------

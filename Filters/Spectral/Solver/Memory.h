@@ -18,8 +18,8 @@
  *                               (3 k and three blocks; a retry of the band asks for fewer pairs
  *                               in the same basis, RetryPairs in Bands.h), the images of its
  *                               Ritz vectors and of the joint span of a merge (up to 3 k / 2),
- *                               block products, and
- *                               the mesh and sparse operators (about 50 values a point)
+ *                               block products, and the mesh and sparse operators (about 50
+ *                               values a point)
  *   + nUsed 80 12               the sparse LDL^T factor: about 80 non-zeros a row (a surface
  *                               mesh's fill-in under a nested-dissection ordering), 12 bytes each
  *                               (an 8-byte value and a 4-byte row index); a volume's factor
