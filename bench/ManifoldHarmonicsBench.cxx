@@ -6,7 +6,9 @@
  * prints one table row: n, m, wall time and its split, peak resident memory, the largest relative
  * residual and the M-orthonormality error. With --scipy it also solves the same matrices with
  * scipy.sparse.linalg.eigsh in shift-invert mode (through /usr/bin/python3) and prints the speed
- * ratio and the largest eigenvalue difference.
+ * ratio and the largest eigenvalue difference; with --slepc, SLEPc's Krylov-Schur with a MUMPS
+ * factor the same way, nearest a target and by spectrum slicing (slepc_reference.py, Debian's
+ * python3-slepc4py), and the ratio to the fastest peer that agrees (PeerAgreement).
  *
  * Each case runs in a child process so that its peak memory is its own.
  *
@@ -32,7 +34,7 @@
  * and its change of units, which the torus of size 1 does not need).
  *
  * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--volume] [--cloud]
- *        [--threads T] [--filter] [--eigenvalues-only] [--scipy] [--scipy-max-n N]
+ *        [--threads T] [--filter] [--eigenvalues-only] [--scipy] [--slepc] [--scipy-max-n N]
  *        [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
@@ -56,6 +58,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,11 +67,16 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
+/// A peer's eigenvalues agree with the product's when their largest relative difference
+/// (PeerDifference) is at most this; only agreeing peers count for the speed ratio.
+constexpr double PeerAgreement = 1e-6;
+
 struct Settings
 {
   std::vector<std::pair<int, int>> Cases;
   int BandSize = 0;
   bool Scipy = false;
+  bool Slepc = false;
   bool Filter = false;
   int ScipyMaxN = 200000;
   /// The torus with the defects of a range scan (ScanMesh).
@@ -117,24 +125,13 @@ void WriteMatrixMarket(const spectral::SparseMatrix& A, const std::string& path)
   }
 }
 
-/// Solve with scipy; returns the wall time of eigsh (negative on failure) and fills lambda.
-double RunScipy(const Settings& settings,
-  const spectral::SparseMatrix& L,
-  const spectral::SparseMatrix& M,
-  int m,
-  std::vector<double>& lambda)
+/// The wall time (negative if the file is missing or empty) and the eigenvalues a reference
+/// script wrote to `path` (scipy_reference.py, slepc_reference.py); removes the file.
+double ReadPeerOutput(const std::string& path, std::vector<double>& lambda)
 {
-  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
-  WriteMatrixMarket(L, base + "-L.mtx");
-  WriteMatrixMarket(M, base + "-M.mtx");
-  const std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/scipy_reference.py " +
-    base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " " + base + "-out.txt";
-  const int status = std::system(command.c_str());
-  std::remove((base + "-L.mtx").c_str());
-  std::remove((base + "-M.mtx").c_str());
-  std::ifstream in(base + "-out.txt");
+  std::ifstream in(path);
   double seconds = -1.0;
-  if (status != 0 || !(in >> seconds))
+  if (!(in >> seconds))
   {
     return -1.0;
   }
@@ -143,8 +140,90 @@ double RunScipy(const Settings& settings,
   {
     lambda.push_back(value);
   }
-  std::remove((base + "-out.txt").c_str());
+  std::remove(path.c_str());
   return seconds;
+}
+
+/// One peer's solve of the case's matrices: its wall time (negative on failure) and eigenvalues.
+struct PeerRun
+{
+  std::string Name;
+  double Seconds = -1.0;
+  std::vector<double> Lambda;
+};
+
+/**
+ * The peers on the same matrices, one after the other (one sitting): scipy's eigsh as LaPy
+ * calls it (`--scipy`), and SLEPc's Krylov-Schur with a MUMPS factor (`--slepc`), nearest the
+ * target and by spectrum slicing over [-0.01, lambda_{m-1} (1 + 1e-6)], the product's own
+ * interval. The matrices are written once, in Matrix Market files under WorkDir, and removed.
+ */
+std::vector<PeerRun> RunPeers(const Settings& settings,
+  const spectral::SparseMatrix& L,
+  const spectral::SparseMatrix& M,
+  int m,
+  double upper)
+{
+  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
+  WriteMatrixMarket(L, base + "-L.mtx");
+  WriteMatrixMarket(M, base + "-M.mtx");
+  const std::string matrices = base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " ";
+  std::vector<PeerRun> runs;
+  if (settings.Scipy)
+  {
+    const std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/scipy_reference.py " +
+      matrices + base + "-scipy.txt";
+    PeerRun run;
+    run.Name = "scipy";
+    if (std::system(command.c_str()) == 0)
+    {
+      run.Seconds = ReadPeerOutput(base + "-scipy.txt", run.Lambda);
+    }
+    runs.push_back(run);
+  }
+  if (settings.Slepc)
+  {
+    char interval[32];
+    std::snprintf(interval, sizeof(interval), "%.17g ", upper);
+    const std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/slepc_reference.py " +
+      matrices + interval + base + "-target.txt " + base + "-slicing.txt";
+    const int status = std::system(command.c_str());
+    for (const char* way : { "target", "slicing" })
+    {
+      PeerRun run;
+      run.Name = std::string("slepc-") + way;
+      const std::string output = base + "-" + way + ".txt";
+      run.Seconds = ReadPeerOutput(output, run.Lambda);
+      std::remove(output.c_str());
+      if (status != 0 && run.Lambda.empty())
+      {
+        run.Seconds = -1.0;
+      }
+      runs.push_back(run);
+    }
+  }
+  std::remove((base + "-L.mtx").c_str());
+  std::remove((base + "-M.mtx").c_str());
+  return runs;
+}
+
+/// The largest relative difference between the first m eigenvalues of a peer and the product's
+/// (relative to |lambda|, or to 1e-6 lambda_{m-1} for eigenvalues near zero); infinity when the
+/// peer found fewer than m.
+double PeerDifference(const std::vector<double>& reference, const spectral::Vector& lambda)
+{
+  const int m = static_cast<int>(lambda.size());
+  if (static_cast<int>(reference.size()) < m)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double difference = 0.0;
+  for (int k = 0; k < m; ++k)
+  {
+    difference = std::max(difference,
+      std::abs(reference[k] - lambda[k]) / std::max(std::abs(reference[k]), lambda[m - 1] * 1e-6));
+  }
+  return difference;
 }
 
 /**
@@ -379,32 +458,47 @@ int RunCase(const Settings& settings, int n, int m)
     filter += buffer;
   }
 
-  std::string scipy = "";
-  if (settings.Scipy && L.rows() <= settings.ScipyMaxN)
+  std::string peers = "";
+  if ((settings.Scipy || settings.Slepc) && L.rows() <= settings.ScipyMaxN)
   {
-    std::vector<double> reference;
-    const double seconds = RunScipy(settings, L, M, m, reference);
-    if (seconds > 0.0 && static_cast<int>(reference.size()) == m)
+    const double upper = result.Eigenvalues[m - 1] * (1.0 + 1e-6);
+    double fastest = std::numeric_limits<double>::infinity();
+    std::string fastestName;
+    for (const PeerRun& run : RunPeers(settings, L, M, m, upper))
     {
-      double difference = 0.0;
-      for (int k = 0; k < m; ++k)
-      {
-        difference = std::max(difference,
-          std::abs(reference[k] - result.Eigenvalues[k]) /
-            std::max(std::abs(reference[k]), result.Eigenvalues[m - 1] * 1e-6));
-      }
       char buffer[160];
+      const double difference = PeerDifference(run.Lambda, result.Eigenvalues);
+      if (run.Seconds < 0.0)
+      {
+        std::snprintf(buffer, sizeof(buffer), "  %s failed", run.Name.c_str());
+      }
+      else
+      {
+        std::snprintf(buffer,
+          sizeof(buffer),
+          "  %s %.2f s x%.1f (%d pairs, max|dlambda|/lambda %.1e)",
+          run.Name.c_str(),
+          run.Seconds,
+          run.Seconds / total,
+          static_cast<int>(run.Lambda.size()),
+          difference);
+        if (difference <= PeerAgreement && run.Seconds < fastest)
+        {
+          fastest = run.Seconds;
+          fastestName = run.Name;
+        }
+      }
+      peers += buffer;
+    }
+    if (!fastestName.empty())
+    {
+      char buffer[96];
       std::snprintf(buffer,
         sizeof(buffer),
-        "  scipy %8.1f s  x%5.1f  max|dlambda|/lambda %.1e",
-        seconds,
-        seconds / total,
-        difference);
-      scipy = buffer;
-    }
-    else
-    {
-      scipy = "  scipy failed";
+        "  fastest agreeing peer %s: x%.1f",
+        fastestName.c_str(),
+        fastest / total);
+      peers += buffer;
     }
   }
 
@@ -423,7 +517,7 @@ int RunCase(const Settings& settings, int n, int m)
     result.MaxResidual,
     result.MaxBackwardError,
     orthogonality,
-    (filter + scipy).c_str());
+    (filter + peers).c_str());
   // What the solver held of its eigenvectors at most, against the three bands the memory
   // estimate counts when it does not keep them (Solver/Memory.h).
   // and the widest Krylov basis of a band, which a retry does not widen (RetryPairs, Bands.h).
@@ -444,7 +538,7 @@ Settings Parse(int argc, char* argv[])
   {
     std::fprintf(stderr,
       "usage: %s [--case N:M]... [--band K] [--scan] [--volume] [--cloud] [--threads T] "
-      "[--filter] [--eigenvalues-only] [--scipy] "
+      "[--filter] [--eigenvalues-only] [--scipy] [--slepc] "
       "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
     std::exit(2);
@@ -518,6 +612,10 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--scipy")
     {
       settings.Scipy = true;
+    }
+    else if (arg == "--slepc")
+    {
+      settings.Slepc = true;
     }
     else if (arg == "--filter")
     {

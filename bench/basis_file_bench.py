@@ -18,6 +18,7 @@ Documentation/large-meshes.md reports its figures.
 import argparse
 import math
 import os
+import sys
 import time
 
 import numpy
@@ -52,6 +53,9 @@ def streamed(mesh, args, base):
     smoothing.SetInputData(mesh)
     smoothing.SetNumberOfHarmonics(args.harmonics)
     smoothing.SetStorageToStreamed()
+    smoothing.SetMemoryLimit(args.memory_limit)
+    if args.progress:
+        watch_progress(smoothing)
     if args.float:
         smoothing.SetBasisPrecisionToFloat()
     seconds, after, disk = {}, {}, {}
@@ -65,6 +69,23 @@ def streamed(mesh, args, base):
         after[stage] = status()
         disk[stage] = {k: io()[k] - before[k] for k in before}
     return seconds, after, disk, "streamed smoothing"
+
+
+def watch_progress(algorithm):
+    """Prints the progress to the standard error at every whole per cent, with the seconds since
+    the start and RssAnon, so that a run of hours shows where it is."""
+    start = time.time()
+    last = [-1]
+
+    def report(caller, event):
+        percent = int(100 * caller.GetProgress())
+        if percent != last[0]:
+            last[0] = percent
+            print("  %5.0f s  %3d %%  %s  RssAnon %.0f MiB" % (
+                time.time() - start, percent, caller.GetProgressText() or "",
+                status()["RssAnon"]), file=sys.stderr, flush=True)
+
+    algorithm.AddObserver("ProgressEvent", report)
 
 
 def torus(points):
@@ -104,6 +125,10 @@ def main():
     parser.add_argument("--file", default="")
     parser.add_argument("--float", action="store_true")
     parser.add_argument("--band-size", type=int, default=0)
+    parser.add_argument("--memory-limit", type=float, default=0.0,
+                        help="MemoryLimit of the filter in MiB (default 0: what is available)")
+    parser.add_argument("--progress", action="store_true",
+                        help="print the progress to the standard error")
     args = parser.parse_args()
     mesh = torus(args.points)
     base = status()
@@ -117,6 +142,9 @@ def main():
     if args.float:
         basis.SetBasisPrecisionToFloat()
     basis.SetBandSize(args.band_size)
+    basis.SetMemoryLimit(args.memory_limit)
+    if args.progress:
+        watch_progress(basis)
     if args.file:
         basis.SetBasisFileName(args.file)
     transform = mh.vtkManifoldHarmonicTransform()

@@ -27,6 +27,8 @@ packages=(
   libslepc-real-dev
   pkg-config
   python3-scipy
+  # The benchmark's SLEPc peer (bench/slepc_reference.py).
+  python3-slepc4py
   python3-numpy
   libutfcpp-dev
   libavcodec-dev
