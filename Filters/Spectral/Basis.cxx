@@ -287,6 +287,7 @@ public:
 
 private:
   void Plan(const Monitor& monitor);
+  ComponentChoice WantedPass(int& expected) const;
   void KeepRepresented(double massScale);
   void SolveComponent(int component,
     const std::vector<int>& rows,
@@ -369,6 +370,53 @@ void Stream::Plan(const Monitor& monitor)
     }
     index[static_cast<std::size_t>(k)] = static_cast<int>(j);
   }
+}
+
+//------------------------------------------------------------------------------
+// The solves of the streamed pass: the plan's, each component asked only up to its last pair
+// the sink wants (BasisSink::Wanted) and the pairs of the same eigenvalue after it
+// (StreamedClusterGap); a component with no wanted pair is not solved. `expected` is set to the
+// number of basis pairs the pass delivers. Without Wanted (or eigenvalues), the plan's solves.
+ComponentChoice Stream::WantedPass(int& expected) const
+{
+  ComponentChoice pass = this->Choice;
+  expected = static_cast<int>(this->Choice.Pairs.size());
+  const Vector& lambda = this->Result.Pairs.Eigenvalues;
+  if (!this->Sink.Wanted || lambda.size() != expected)
+  {
+    return pass;
+  }
+  // For each component, the eigenvalue of its last wanted pair (-1: none) and then the number
+  // of its pairs the pass solves (its pairs are a prefix of its spectrum, in ascending order).
+  const std::size_t components = pass.Asked.size();
+  std::vector<double> last(components, -1.0);
+  std::vector<int> upTo(components, 0);
+  for (int j = 0; j < expected; ++j)
+  {
+    if (this->Sink.Wanted(j))
+    {
+      last[static_cast<std::size_t>(this->Choice.Pairs[static_cast<std::size_t>(j)].first)] =
+        lambda[j];
+    }
+  }
+  pass.Pairs.clear();
+  for (int j = 0; j < expected; ++j)
+  {
+    const auto [component, k] = this->Choice.Pairs[static_cast<std::size_t>(j)];
+    const double top = last[static_cast<std::size_t>(component)];
+    if (top >= 0.0 && lambda[j] <= top + StreamedClusterGap * std::abs(top))
+    {
+      pass.Pairs.emplace_back(component, k);
+      int& count = upTo[static_cast<std::size_t>(component)];
+      count = std::max(count, k + 1);
+    }
+  }
+  for (std::size_t c = 0; c < components; ++c)
+  {
+    pass.Asked[c] = std::min(pass.Asked[c], upTo[c]);
+  }
+  expected = static_cast<int>(pass.Pairs.size());
+  return pass;
 }
 
 //------------------------------------------------------------------------------
@@ -499,7 +547,9 @@ void Stream::Run(double massScale)
   {
     this->Sink.Begin(this->Result);
   }
-  this->Result.Pairs.Eigenvalues.resize(m);
+  int expected = m;
+  const ComponentChoice pass = planned ? this->WantedPass(expected) : this->Choice;
+  this->Result.Pairs.Eigenvalues.conservativeResize(m);
   const Monitor streamPart = this->Watch.Scaled(planned ? 0.55 : 0.1, 1.0);
   const ComponentSolver solve = [this](int component,
                                   const std::vector<int>& rows,
@@ -518,7 +568,7 @@ void Stream::Run(double massScale)
         this->Ops.Mass,
         this->Ops.Components.Label,
         this->Ops.Components.Count,
-        this->Choice,
+        pass,
         solve,
         streamPart);
       break;
@@ -534,10 +584,10 @@ void Stream::Run(double massScale)
       this->Sink.Restart();
     }
   }
-  if (this->DeliveredCount != m)
+  if (this->DeliveredCount != expected)
   {
     throw SolverFailure("the streamed basis delivered " + std::to_string(this->DeliveredCount) +
-        " of its " + std::to_string(m) + " pairs",
+        " of its " + std::to_string(expected) + " pairs",
       this->DeliveredCount);
   }
 }

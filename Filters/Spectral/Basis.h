@@ -61,7 +61,8 @@ struct BasisResult;
  * first solves for the spectrum alone (memory independent of m), which fixes each component's
  * request, each pair's final index and the points left out (components none of the m harmonics
  * represents), then solves each component again with the same request, streaming: twice the
- * eigensolve time (the assembly is done once).
+ * eigensolve time (the assembly is done once), less where the sink wants the lower pairs alone
+ * (Wanted): the second solve of each component then stops at its last wanted pair.
  *
  * Not streamed: a frequency window (BasisOptions::UpperFrequency > 0; InvalidInput).
  */
@@ -79,11 +80,21 @@ struct BasisSink
    */
   std::function<void(const BasisResult& basis)> Begin;
   /**
+   * Optional, and asked only when the eigenvalues are known before the harmonics (SpectrumFirst,
+   * or several components): called after Begin for each basis index, whether its harmonic can
+   * change what the sink computes. A streamed low pass multiplies every harmonic above its
+   * transition by exactly zero (StreamedFilter): each component is then solved only up to its
+   * last wanted pair (with the pairs of the same eigenvalue as that one, StreamedClusterGap),
+   * and Harmonics receives those pairs alone, not necessarily all m. Empty: all are wanted.
+   */
+  std::function<bool(int index)> Wanted;
+  /**
    * Receives verified harmonics: `harmonics` (#InputPointIds by values.size(), at most
    * StreamedBlockColumns, Solver/Memory.h) holds the harmonics of indices first, first + 1, ...
    * of the basis, `values` their eigenvalues (mesh
-   * units). Each index in [0, m) comes exactly once (unless Restart is called), in no
-   * particular order across components, ascending within one.
+   * units). Each index in [0, m) comes exactly once (unless Restart is called; with Wanted,
+   * each index up to its component's last wanted pair), in no particular order across
+   * components, ascending within one.
    */
   std::function<void(int first, const Vector& values, const DenseMatrix& harmonics)> Harmonics;
   /**
@@ -94,6 +105,14 @@ struct BasisSink
    */
   std::function<void()> Restart;
 };
+
+/**
+ * Where a streamed pass stops early (BasisSink::Wanted): after its component's last wanted pair
+ * it still solves the pairs whose eigenvalue exceeds that pair's by at most this fraction, so
+ * that a cluster of (nearly) equal eigenvalues is delivered whole, as the in-memory basis holds
+ * it, and not cut where the solver's choice within the cluster is arbitrary.
+ */
+constexpr double StreamedClusterGap = 1e-6;
 
 /// What ComputeBasis computes and how.
 struct BasisOptions

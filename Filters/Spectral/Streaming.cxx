@@ -24,6 +24,9 @@ BasisSink StreamedFilter::Sink()
   sink.Harmonics = [this](int first, const Vector& values, const DenseMatrix& harmonics)
   { this->Add(values, harmonics, first); };
   sink.Restart = [this]() { this->Sum.setZero(); };
+  // A harmonic whose gain is the re-injection gain adds nothing (Add): a low pass's harmonics
+  // above its transition (gain and re-injection gain exactly 0) are not solved for.
+  sink.Wanted = [this](int index) { return this->Gains[index] != this->HighFrequencyGain; };
   return sink;
 }
 

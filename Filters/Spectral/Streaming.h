@@ -17,6 +17,12 @@
  * (StreamedDesign), given the whole spectrum before any harmonic (BasisSink::SpectrumFirst): the
  * gains of relative units and the re-injection gain depend on the highest frequency.
  *
+ * Cost: only the harmonics whose gain differs from hfGain add to S; the others are not solved
+ * for (BasisSink::Wanted). A low pass (hfGain 0 when its transition ends below the highest
+ * frequency) needs the harmonics below the end of its transition alone: at the default cutoff
+ * (half the highest frequency, transition 0.1), eigenvalues below (0.5 * 1.05)^2 = 0.28 of the
+ * highest, by Weyl's law (lambda_k grows as k) about the lowest 28 % of the m harmonics.
+ *
  * Memory: X, the sum S and D X on the used points (3 n c doubles), besides what ComputeBasis
  * streams with (EstimateStreamedMemory, Solver/Memory.h).
  *

@@ -454,8 +454,43 @@ void FilterMatches(const TriangleMesh& mesh,
     hfGain);
   StreamedFilter filter(X, design);
   options.Sink = filter.Sink();
+  // Which harmonics the filter received: those of a gain other than hfGain at least (the others
+  // add nothing), and, for this low pass, not all (BasisSink::Wanted).
+  std::vector<int> received(static_cast<std::size_t>(gains.size()), 0);
+  const auto add = options.Sink.Harmonics;
+  options.Sink.Harmonics = [&](int first, const Vector& values, const DenseMatrix& harmonics)
+  {
+    for (Eigen::Index j = 0; j < values.size(); ++j)
+    {
+      ++received[static_cast<std::size_t>(first + j)];
+    }
+    add(first, values, harmonics);
+  };
   ComputeBasis(mesh, options);
   const RowMatrix Y = filter.Result();
+  int receivedCount = 0;
+  int wantedCount = 0;
+  int twice = 0;
+  int missing = 0;
+  for (Eigen::Index j = 0; j < gains.size(); ++j)
+  {
+    const int times = received[static_cast<std::size_t>(j)];
+    receivedCount += times;
+    wantedCount += gains[j] != hfGain ? 1 : 0;
+    twice += times > 1 ? 1 : 0;
+    missing += gains[j] != hfGain && times == 0 ? 1 : 0;
+  }
+  Check(twice == 0, name + "no harmonic received twice");
+  Check(missing == 0, name + "every harmonic of a gain other than hfGain received");
+  std::printf("    %s%d of %d harmonics solved and filtered, %d of them with a gain other than "
+              "hfGain %g\n",
+    name.c_str(),
+    receivedCount,
+    static_cast<int>(gains.size()),
+    wantedCount,
+    hfGain);
+  Check(wantedCount < gains.size() && receivedCount < gains.size(),
+    name + "the low pass solved fewer harmonics than the basis has");
   const double scale = signals.cwiseAbs().maxCoeff();
   CheckBelow((Y - expected).cwiseAbs().maxCoeff() / scale,
     1e-12,
