@@ -697,13 +697,15 @@ spectral::BasisResult StreamBasisToFile(const spectral::TriangleMesh& mesh,
 // The basis of `solved` (the input's `mesh`, welded by `welding` when not null) streamed into a
 // filter of the input's point coordinates: each solved row's signal is the coordinates of the
 // copy the transform counts (Welding::Counted), and every copy of a welded point re-injects its
-// own, as the in-memory stages do with the ghost flags the basis writes.
+// own, as the in-memory stages do with the ghost flags the basis writes. `eigenvalues` receives
+// those the stream knows: of the harmonics it solved, and the highest (ascending, mesh units).
 spectral::RowMatrix StreamInto(const spectral::StreamedDesign& design,
   const spectral::TriangleMesh& mesh,
   const spectral::TriangleMesh& solved,
   const vtkManifoldHarmonicsParallel::Welding* welding,
   spectral::BasisOptions options,
-  const spectral::Monitor& monitor)
+  const spectral::Monitor& monitor,
+  spectral::Vector& eigenvalues)
 {
   const Eigen::Index n = mesh.Vertices.rows();
   const Eigen::Index rows = solved.Vertices.rows();
@@ -719,7 +721,18 @@ spectral::RowMatrix StreamInto(const spectral::StreamedDesign& design,
   }
   spectral::StreamedFilter filter(spectral::ConstRowView(signals.data(), rows, 3), design);
   options.Sink = filter.Sink();
-  spectral::ComputeBasis(solved, options, monitor);
+  const spectral::Vector lambda =
+    spectral::ComputeBasis(solved, options, monitor).Pairs.Eigenvalues;
+  std::vector<double> known;
+  for (Eigen::Index k = 0; k < lambda.size(); ++k)
+  {
+    if (!std::isnan(lambda[k]))
+    {
+      known.push_back(lambda[k]);
+    }
+  }
+  eigenvalues =
+    Eigen::Map<const spectral::Vector>(known.data(), static_cast<Eigen::Index>(known.size()));
   return filter.ResultOn(spectral::ConstRowView(mesh.Vertices.data(), n, 3), rowOf);
 }
 
@@ -1074,7 +1087,8 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
                  merged ? welded : cells.Mesh,
                  merged ? &solution.Welding : nullptr,
                  options,
-                 monitor);
+                 monitor,
+                 stream->Eigenvalues);
                return;
              }
              if (solution.File.Reuse)

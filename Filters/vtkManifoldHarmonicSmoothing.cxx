@@ -97,20 +97,29 @@ Transformed TransformPoints(vtkPointSet* withBasis,
 
 //------------------------------------------------------------------------------
 // The low pass at `fraction` of the highest computed frequency (the spectral filter's defaults
-// otherwise) for the eigenvalues `lambda`: its gains, and its re-injection gain in
-// `highFrequencyGain` (after the cutoff warnings, `self`'s).
+// otherwise) for the eigenvalues `lambda` (ascending: only the last sets the frequencies).
+vtkManifoldHarmonicsStages::Design LowPassDesign(double fraction,
+  const spectral::Vector& lambda,
+  double nyquist)
+{
+  spectral::FilterParameters given;
+  given.Kind = spectral::FilterKind::LowPass;
+  given.Cutoff = fraction;
+  given.UpperCutoff = spectral::DefaultUpperCutoffFraction;
+  return vtkManifoldHarmonicsStages::DesignFilter(
+    given, vtkSpectralFilter::FRACTION_OF_HIGHEST, lambda, nyquist);
+}
+
+//------------------------------------------------------------------------------
+// The gains of LowPassDesign, and its re-injection gain in `highFrequencyGain` (after the cutoff
+// warnings, `self`'s).
 spectral::Vector LowPassGains(vtkManifoldHarmonicSmoothing* self,
   double fraction,
   const spectral::Vector& lambda,
   double nyquist,
   double& highFrequencyGain)
 {
-  spectral::FilterParameters given;
-  given.Kind = spectral::FilterKind::LowPass;
-  given.Cutoff = fraction;
-  given.UpperCutoff = spectral::DefaultUpperCutoffFraction;
-  const vtkManifoldHarmonicsStages::Design design = vtkManifoldHarmonicsStages::DesignFilter(
-    given, vtkSpectralFilter::FRACTION_OF_HIGHEST, lambda, nyquist);
+  const vtkManifoldHarmonicsStages::Design design = LowPassDesign(fraction, lambda, nyquist);
   highFrequencyGain = vtkManifoldHarmonicsStages::ReinjectionGain(self, design, nyquist, true);
   return design.Gains;
 }
@@ -379,13 +388,18 @@ int vtkManifoldHarmonicSmoothing::ExecuteStreamed(vtkPointSet* input, vtkPointSe
   vtkManifoldHarmonicBasis::StreamRequest request;
   const double fraction = this->CutoffFraction;
   const int m = this->NumberOfHarmonics;
-  request.Design = [this, fraction, nyquist, m](const spectral::Vector& lambda, double& hfGain)
+  // Given the highest eigenvalue alone (the stream solves the others later, or never when
+  // their gain is 0); the warnings about the cutoff come once the stream knows the spectrum.
+  request.Design = [fraction, nyquist, m](double highest, double& hfGain)
   {
-    if (OnlyConstantHarmonics(lambda, nyquist))
+    const spectral::Vector top = spectral::Vector::Constant(1, highest);
+    if (OnlyConstantHarmonics(top, nyquist))
     {
       throw spectral::InvalidInput(NothingToSmooth(m));
     }
-    return LowPassGains(this, fraction, lambda, nyquist, hfGain);
+    const vtkManifoldHarmonicsStages::Design design = LowPassDesign(fraction, top, nyquist);
+    hfGain = vtkManifoldHarmonicsStages::MeanGainAbove(design, nyquist);
+    return design.Parameters;
   };
   const int solved = this->Basis->SolveStreamed(input, request);
   if (this->GetAbortExecute() || this->Basis->GetAbortExecute())
@@ -401,6 +415,13 @@ int vtkManifoldHarmonicSmoothing::ExecuteStreamed(vtkPointSet* input, vtkPointSe
   {
     output->ShallowCopy(input); // no cells to solve on (the basis warned)
     return 1;
+  }
+  if (request.Eigenvalues.size() > 0)
+  {
+    // The cutoff warnings of the in-memory path, from the eigenvalues the stream knows: those
+    // it skipped lie above the low pass's transition, where the highest one lies too.
+    double hfGain = 0.0;
+    LowPassGains(this, fraction, request.Eigenvalues, nyquist, hfGain);
   }
   SetSmoothedPoints(input, output, request.Filtered);
   this->UpdateProgress(1.0);

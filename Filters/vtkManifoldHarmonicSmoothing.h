@@ -66,10 +66,11 @@
  * The filter keeps its internal basis between executions (IN_MEMORY): when only CutoffFraction
  * changes (a slider in ParaView), it re-runs the cheap filter stage alone. A new input,
  * NumberOfHarmonics or BasisPrecision recomputes the basis. STREAMED has no basis to keep: every
- * execution, a new CutoffFraction included, solves again, twice: the spectrum first, since the
- * cutoff is relative to the highest frequency, then the harmonics below the end of the low
- * pass's transition alone (those above it have gain 0: spectral::StreamedFilter, about a
- * quarter of them at CutoffFraction 0.5);
+ * execution, a new CutoffFraction included, solves again: the highest eigenvalue first, since
+ * the cutoff is relative to the highest frequency (with one connected component a few inertia
+ * counts and one short band; with several, the whole spectrum), then the harmonics below the
+ * end of the low pass's transition alone (those above it have gain 0: spectral::StreamedFilter,
+ * about a quarter of them at CutoffFraction 0.5), less work than the basis in memory;
  * for interactive filtering of a basis larger than memory, compute it once with
  * vtkManifoldHarmonicBasis and filter it with vtkManifoldHarmonicTransform and
  * vtkSpectralFilter. The streamed result equals the in-memory one to round-off

@@ -57,20 +57,21 @@ Design DesignFilter(const spectral::FilterParameters& given,
 }
 
 //------------------------------------------------------------------------------
+double MeanGainAbove(const Design& design, double nyquist)
+{
+  if (nyquist <= 0.0)
+  {
+    throw spectral::InvalidInput(
+      "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
+  }
+  // Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
+  return spectral::MeanGain(design.Parameters, spectral::HighestFrequency(design.Lambda), nyquist);
+}
+
+//------------------------------------------------------------------------------
 double ReinjectionGain(vtkObject* self, const Design& design, double nyquist, bool reinject)
 {
-  double highFrequencyGain = 0.0;
-  if (reinject)
-  {
-    if (nyquist <= 0.0)
-    {
-      throw spectral::InvalidInput(
-        "the Nyquist frequency needs a mesh with triangles of non-zero, finite edge length");
-    }
-    // Mean gain of F over [omega_m, omega_Nyquist], eq. 10 of Vallet and Levy.
-    highFrequencyGain =
-      spectral::MeanGain(design.Parameters, spectral::HighestFrequency(design.Lambda), nyquist);
-  }
+  const double highFrequencyGain = reinject ? MeanGainAbove(design, nyquist) : 0.0;
   vtkManifoldHarmonicsCutoffs::WarnAboutCutoffs(self,
     design.Units,
     reinject,

@@ -70,6 +70,13 @@ Design DesignFilter(const spectral::FilterParameters& given,
   double nyquist);
 
 /**
+ * The mean gain of the design's filter over [omega_max, nyquist], which eq. 10 of Vallet and Levy
+ * re-injects, without warnings (ReinjectionGain warns).
+ * \throws spectral::InvalidInput without a Nyquist frequency.
+ */
+double MeanGainAbove(const Design& design, double nyquist);
+
+/**
  * The gain of the re-injected high frequencies (eq. 10 of Vallet and Levy; 0 without
  * re-injection), after the warnings about cutoffs the spectrum leaves no choice for (`self`'s).
  * \throws spectral::InvalidInput when re-injecting without a Nyquist frequency.

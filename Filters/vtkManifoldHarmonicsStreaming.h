@@ -17,10 +17,14 @@
 /// A streamed low pass of the input's point coordinates.
 struct vtkManifoldHarmonicBasis::StreamRequest
 {
-  /// The filter's design (gains and re-injection gain), given the spectrum before any harmonic.
+  /// The filter's design (the filter and its re-injection gain), given the highest eigenvalue
+  /// before any harmonic.
   spectral::StreamedDesign Design;
   /// Set by SolveStreamed: the filtered coordinates of every input point (n by 3).
   spectral::RowMatrix Filtered;
+  /// Set by SolveStreamed: the eigenvalues the stream knows (ascending, mesh units): those of
+  /// the harmonics it solved, and the highest.
+  spectral::Vector Eigenvalues;
 };
 
 #endif

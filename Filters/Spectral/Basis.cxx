@@ -3,6 +3,7 @@
 #include "Basis.h"
 #include "Problem.h"
 
+#include "Common/Constants.h"
 #include "Solver/Acceptance.h"
 #include "Solver/Verification.h"
 
@@ -257,6 +258,111 @@ struct StreamRestart
 {
 };
 
+//------------------------------------------------------------------------------
+// The number of eigenvalues below sigma (CountEigenvaluesBelow); a shift that is an eigenvalue
+// (the factorization fails) moves up by a relative 1e-9 and counts again.
+int CountBelow(const SparseMatrix& L, const SparseMatrix& M, double& sigma)
+{
+  for (int attempt = 0;; ++attempt)
+  {
+    try
+    {
+      return CountEigenvaluesBelow(L, M, sigma);
+    }
+    catch (const SolverFailure&)
+    {
+      if (attempt == 3)
+      {
+        throw;
+      }
+      sigma += 1e-9 * std::max(std::abs(sigma), 1e-300);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// How far below lambda_{m-1} HighestOfSmallest's shift may count (its solve computes the pairs
+// from there on): a twentieth of m, at least 20 pairs.
+int HighestWindow(int m)
+{
+  return std::max(20, m / 20);
+}
+
+//------------------------------------------------------------------------------
+// lambda_{m-1} of a connected component's L h = lambda M h, without the pairs far below it.
+// Inertia counts (CountBelow) look for a shift sigma with c eigenvalues below it,
+// m - 1 - HighestWindow(m) <= c <= m - 1; the solve of the m - c pairs from sigma on
+// (PairRequest::StartIndex c) then ends at lambda_{m-1}, proven as every band is. The first
+// shift comes from Weyl's law, N(lambda) ~ C lambda^(d/2) with C = |M| / (4 pi) on a surface
+// (d = 2) and |M| / (6 pi^2) in a volume (d = 3), |M| = 1^T M 1 its area or volume; each next
+// one from the last count by the same law, kept inside the bracket of the counts so far. After
+// HighestCounts counts without such a shift, the best one below lambda_{m-1} serves (a longer
+// solve; from 0, the whole spectrum). `statistics` receives the solve's, and the counts'
+// factorizations. Progress: each count a share of HighestCounts in the first half, the solve
+// the rest.
+constexpr int HighestCounts = 12;
+double HighestOfSmallest(const SparseMatrix& L,
+  const SparseMatrix& M,
+  int m,
+  int dimension,
+  const PairSolver& solve,
+  const Monitor& monitor,
+  EigenResult& statistics)
+{
+  const int window = HighestWindow(m);
+  const double target = std::max(0.5, m - 1 - 0.5 * window);
+  const double exponent = 2.0 / dimension;
+  const double measure = M.sum();
+  const double weyl = measure / (dimension == 3 ? 6.0 * Pi * Pi : 4.0 * Pi);
+  double sigma = std::pow(target / weyl, exponent);
+  double low = 0.0; // the best shift below lambda_{m-1} so far, and its count
+  int lowCount = 0;
+  double high = std::numeric_limits<double>::infinity();
+  int counts = 0;
+  while (counts < HighestCounts && std::isfinite(sigma) && sigma > 0.0)
+  {
+    monitor.ThrowIfCancelled();
+    const int count = CountBelow(L, M, sigma);
+    ++counts;
+    monitor.Report(0.5 * counts / HighestCounts);
+    if (count <= m - 1)
+    {
+      if (count >= lowCount)
+      {
+        low = sigma;
+        lowCount = count;
+      }
+      if (count >= m - 1 - window)
+      {
+        break;
+      }
+    }
+    else
+    {
+      high = std::min(high, sigma);
+    }
+    double next = sigma * std::pow(target / std::max(count, 1), exponent);
+    if (!(next > low && next < high))
+    {
+      next = std::isfinite(high) ? 0.5 * (low + high) : 2.0 * sigma;
+    }
+    sigma = next;
+  }
+  statistics = solve(L,
+    M,
+    PairRequest{ m - lowCount, lowCount, low },
+    monitor.Scaled(0.5 * counts / HighestCounts, 1.0));
+  statistics.Factorizations += counts;
+  const Vector& values = statistics.Eigenvalues;
+  if (values.size() != m - lowCount)
+  {
+    throw SolverFailure("the solve below the highest eigenvalue returned " +
+        std::to_string(values.size()) + " of " + std::to_string(m - lowCount) + " pairs",
+      static_cast<int>(values.size()));
+  }
+  return values[values.size() - 1];
+}
+
 /// A streamed basis (BasisSink): which pairs of which component go where, and what came.
 class Stream
 {
@@ -273,6 +379,7 @@ public:
     , ValueScale(problem.Scale * problem.Scale)
     , VectorScale(std::pow(problem.Scale, 0.5 * problem.Dimension))
     , Harmonics(problem.Harmonics)
+    , Dimension(problem.Dimension)
   {
     this->State.Options = PlannedSolverOptions(problem, options);
     this->State.Options.KeepEigenvectors = false;
@@ -286,6 +393,7 @@ public:
   void Run(double massScale);
 
 private:
+  void Decide();
   void Plan(const Monitor& monitor);
   ComponentChoice WantedPass(int& expected) const;
   void KeepRepresented(double massScale);
@@ -310,6 +418,11 @@ private:
   const double ValueScale;
   const double VectorScale;
   const int Harmonics;
+  const int Dimension;
+  /// Whether the plan found lambda_{m-1} alone (one component, BasisSink::HighestFirst), or
+  /// the whole spectrum (SpectrumFirst, or several components).
+  bool HighestOnly = false;
+  bool Planned = false;
   Fallbacks State;
   ComponentChoice Choice;
   /// For each component, the basis index of each of its pairs (-1: not in the basis).
@@ -325,25 +438,54 @@ private:
 };
 
 //------------------------------------------------------------------------------
+// What the plan solves first: lambda_{m-1} alone where the sink needs no more (HighestFirst) and
+// that is cheaper than the spectrum (one component, past the dense solver's sizes, more pairs
+// than two windows of HighestOfSmallest); the whole spectrum where the sink asks for it or
+// several components must share the m pairs; nothing otherwise.
+void Stream::Decide()
+{
+  const int count = this->Ops.Components.Count;
+  this->HighestOnly = this->Sink.HighestFirst && !this->Sink.SpectrumFirst && count <= 1 &&
+    this->Ops.Stiffness.rows() > this->State.Options.DenseThreshold &&
+    this->Harmonics > 2 * HighestWindow(this->Harmonics);
+  this->Planned =
+    !this->HighestOnly && (this->Sink.SpectrumFirst || this->Sink.HighestFirst || count > 1);
+}
+
+//------------------------------------------------------------------------------
 // Which component's pairs go where: from a spectrum alone with several components (or when the
 // sink asks for it first), otherwise the one component's m pairs in order.
 void Stream::Plan(const Monitor& monitor)
 {
   const int count = this->Ops.Components.Count;
-  if (this->Sink.SpectrumFirst || count > 1)
+  const PairSolver solveOne =
+    [this](
+      const SparseMatrix& L, const SparseMatrix& M, const PairRequest& request, const Monitor& part)
+  { return SolveWithFallbacks(L, M, request, part, this->State); };
+  if (this->HighestOnly)
   {
-    const PairSolver solve = [this](const SparseMatrix& L,
-                               const SparseMatrix& M,
-                               const PairRequest& request,
-                               const Monitor& part)
-    { return SolveWithFallbacks(L, M, request, part, this->State); };
+    EigenResult statistics;
+    const double highest = HighestOfSmallest(this->Ops.Stiffness,
+      this->Ops.Mass,
+      this->Harmonics,
+      this->Dimension,
+      solveOne,
+      monitor,
+      statistics);
+    statistics.Eigenvalues =
+      Vector::Constant(this->Harmonics, std::numeric_limits<double>::quiet_NaN());
+    statistics.Eigenvalues[this->Harmonics - 1] = highest / this->ValueScale;
+    this->Result.Pairs = std::move(statistics);
+  }
+  if (this->Planned)
+  {
     EigenResult spectrum = SmallestEigenpairsByComponent(this->Ops.Stiffness,
       this->Ops.Mass,
       this->Ops.LumpedMass,
       this->Ops.Components.Label,
       count,
       this->Harmonics,
-      solve,
+      solveOne,
       monitor,
       this->Ops.ConstantHarmonics,
       &this->Choice);
@@ -373,45 +515,45 @@ void Stream::Plan(const Monitor& monitor)
 }
 
 //------------------------------------------------------------------------------
-// The solves of the streamed pass: the plan's, each component asked only up to its last pair
-// the sink wants (BasisSink::Wanted) and the pairs of the same eigenvalue after it
-// (StreamedClusterGap); a component with no wanted pair is not solved. `expected` is set to the
-// number of basis pairs the pass delivers. Without Wanted (or eigenvalues), the plan's solves.
+// The solves of the streamed pass: the plan's, each component asked only up to its last pair at
+// or below the sink's BasisSink::WantedUpTo and the pairs of the same eigenvalue after it
+// (StreamedClusterGap); a component with no wanted pair is not solved. With the highest
+// eigenvalue alone known (HighestOnly), an inertia count gives how many pairs lie there.
+// `expected` is set to the number of basis pairs the pass delivers.
 ComponentChoice Stream::WantedPass(int& expected) const
 {
   ComponentChoice pass = this->Choice;
   expected = static_cast<int>(this->Choice.Pairs.size());
   const Vector& lambda = this->Result.Pairs.Eigenvalues;
-  if (!this->Sink.Wanted || lambda.size() != expected)
+  const double bound = this->Sink.WantedUpTo ? this->Sink.WantedUpTo() : lambda[0];
+  if (!this->Sink.WantedUpTo || lambda.size() != expected || !(bound < lambda[expected - 1]))
   {
     return pass;
   }
-  // For each component, the eigenvalue of its last wanted pair (-1: none) and then the number
-  // of its pairs the pass solves (its pairs are a prefix of its spectrum, in ascending order).
-  const std::size_t components = pass.Asked.size();
-  std::vector<double> last(components, -1.0);
-  std::vector<int> upTo(components, 0);
-  for (int j = 0; j < expected; ++j)
+  const double reach = bound + StreamedClusterGap * std::abs(bound);
+  if (this->HighestOnly)
   {
-    if (this->Sink.Wanted(j))
-    {
-      last[static_cast<std::size_t>(this->Choice.Pairs[static_cast<std::size_t>(j)].first)] =
-        lambda[j];
-    }
+    double shift = reach * this->ValueScale;
+    const int count = bound < 0.0 ? 0 : CountBelow(this->Ops.Stiffness, this->Ops.Mass, shift);
+    expected = std::min(count, expected);
+    pass.Asked = { expected };
+    pass.Pairs.resize(static_cast<std::size_t>(expected));
+    return pass;
   }
+  // Each component's pairs are a prefix of its spectrum, in ascending order.
+  std::vector<int> upTo(pass.Asked.size(), 0);
   pass.Pairs.clear();
   for (int j = 0; j < expected; ++j)
   {
     const auto [component, k] = this->Choice.Pairs[static_cast<std::size_t>(j)];
-    const double top = last[static_cast<std::size_t>(component)];
-    if (top >= 0.0 && lambda[j] <= top + StreamedClusterGap * std::abs(top))
+    if (lambda[j] <= reach)
     {
       pass.Pairs.emplace_back(component, k);
       int& count = upTo[static_cast<std::size_t>(component)];
       count = std::max(count, k + 1);
     }
   }
-  for (std::size_t c = 0; c < components; ++c)
+  for (std::size_t c = 0; c < upTo.size(); ++c)
   {
     pass.Asked[c] = std::min(pass.Asked[c], upTo[c]);
   }
@@ -534,12 +676,13 @@ void Stream::SolveComponent(int component,
 //------------------------------------------------------------------------------
 void Stream::Run(double massScale)
 {
-  const Monitor spectrumPart = this->Watch.Scaled(0.1, 0.55);
-  const bool planned = this->Sink.SpectrumFirst || this->Ops.Components.Count > 1;
-  this->Plan(spectrumPart);
+  this->Decide();
+  // The share of the progress of what the plan solves first (Decide).
+  const double planned = this->Planned ? 0.55 : (this->HighestOnly ? 0.2 : 0.1);
+  this->Plan(this->Watch.Scaled(0.1, planned));
   this->KeepRepresented(massScale);
   const int m = static_cast<int>(this->Choice.Pairs.size());
-  if (!planned)
+  if (!this->Planned && !this->HighestOnly)
   {
     this->Result.Pairs = EigenResult();
   }
@@ -548,9 +691,10 @@ void Stream::Run(double massScale)
     this->Sink.Begin(this->Result);
   }
   int expected = m;
-  const ComponentChoice pass = planned ? this->WantedPass(expected) : this->Choice;
+  const ComponentChoice pass =
+    this->Planned || this->HighestOnly ? this->WantedPass(expected) : this->Choice;
   this->Result.Pairs.Eigenvalues.conservativeResize(m);
-  const Monitor streamPart = this->Watch.Scaled(planned ? 0.55 : 0.1, 1.0);
+  const Monitor streamPart = this->Watch.Scaled(planned, 1.0);
   const ComponentSolver solve = [this](int component,
                                   const std::vector<int>& rows,
                                   const SparseMatrix& L,

@@ -57,42 +57,51 @@ struct BasisResult;
  *
  * Cost. Which pair of a component gets which index of the basis is known only once every
  * component is solved (the m smallest of the union, Solver/Components.h). With one connected
- * component and !SpectrumFirst the pairs stream at once, in one solve. Otherwise ComputeBasis
- * first solves for the spectrum alone (memory independent of m), which fixes each component's
- * request, each pair's final index and the points left out (components none of the m harmonics
- * represents), then solves each component again with the same request, streaming: twice the
- * eigensolve time (the assembly is done once), less where the sink wants the lower pairs alone
- * (Wanted): the second solve of each component then stops at its last wanted pair.
+ * component and neither SpectrumFirst nor HighestFirst the pairs stream at once, in one solve.
+ * With one component and HighestFirst, ComputeBasis first finds lambda_{m-1} alone
+ * (HighestOfSmallest: a few inertia counts and a solve of the pairs just below it), then
+ * streams the pairs up to the sink's WantedUpTo, whose number an inertia count gives. Otherwise
+ * (SpectrumFirst, or several components) ComputeBasis first solves for the spectrum alone
+ * (memory independent of m), which fixes each component's request, each pair's final index and
+ * the points left out (components none of the m harmonics represents), then solves each
+ * component again with the same request, streaming: twice the eigensolve time (the assembly is
+ * done once), less where the sink wants the lower pairs alone (WantedUpTo): the second solve of
+ * each component then stops at its last wanted pair.
  *
  * Not streamed: a frequency window (BasisOptions::UpperFrequency > 0; InvalidInput).
  */
 struct BasisSink
 {
-  /// Whether Begin must receive all m eigenvalues (e.g. gains relative to the highest
-  /// frequency): costs a second solve with one component (see above).
+  /// Whether Begin must receive all m eigenvalues: costs a second solve with one component
+  /// (see above).
   bool SpectrumFirst = false;
+  /// Whether Begin must receive the highest eigenvalue lambda_{m-1} (e.g. gains relative to the
+  /// highest frequency): with one component it costs a fraction of a solve (see above).
+  bool HighestFirst = false;
   /**
    * Called once, before any harmonic, with the basis but its harmonics: InputPointIds and
    * LumpedMass as returned (the rows of every harmonic to come), Components, ConstantHarmonics,
    * BoundaryPoints and the warnings so far; Pairs.Eigenvalues holds all m eigenvalues (mesh
-   * units) when they are known (SpectrumFirst, or several components), else it is empty. May
-   * be empty.
+   * units) when they are known (SpectrumFirst, or several components), m entries of which only
+   * the last, lambda_{m-1}, is known (the others NaN) with HighestFirst and one component, else
+   * it is empty. May be empty.
    */
   std::function<void(const BasisResult& basis)> Begin;
   /**
-   * Optional, and asked only when the eigenvalues are known before the harmonics (SpectrumFirst,
-   * or several components): called after Begin for each basis index, whether its harmonic can
-   * change what the sink computes. A streamed low pass multiplies every harmonic above its
-   * transition by exactly zero (StreamedFilter): each component is then solved only up to its
-   * last wanted pair (with the pairs of the same eigenvalue as that one, StreamedClusterGap),
-   * and Harmonics receives those pairs alone, not necessarily all m. Empty: all are wanted.
+   * Optional, asked after Begin where the eigenvalues or the highest are known before the
+   * harmonics (SpectrumFirst, HighestFirst, or several components): the largest eigenvalue
+   * (mesh units) whose harmonic can change what the sink computes. A streamed low pass
+   * multiplies every harmonic above its transition by exactly zero (StreamedFilter): each
+   * component is then solved only up to its last pair at or below it (with the pairs of the
+   * same eigenvalue as that one, StreamedClusterGap), and Harmonics receives those pairs alone,
+   * not necessarily all m. Empty, or infinity: all are wanted.
    */
-  std::function<bool(int index)> Wanted;
+  std::function<double()> WantedUpTo;
   /**
    * Receives verified harmonics: `harmonics` (#InputPointIds by values.size(), at most
    * StreamedBlockColumns, Solver/Memory.h) holds the harmonics of indices first, first + 1, ...
    * of the basis, `values` their eigenvalues (mesh
-   * units). Each index in [0, m) comes exactly once (unless Restart is called; with Wanted,
+   * units). Each index in [0, m) comes exactly once (unless Restart is called; with WantedUpTo,
    * each index up to its component's last wanted pair), in no particular order across
    * components, ascending within one.
    */
@@ -107,7 +116,7 @@ struct BasisSink
 };
 
 /**
- * Where a streamed pass stops early (BasisSink::Wanted): after its component's last wanted pair
+ * Where a streamed pass stops early (BasisSink::WantedUpTo): after its component's last wanted pair
  * it still solves the pairs whose eigenvalue exceeds that pair's by at most this fraction, so
  * that a cluster of (nearly) equal eigenvalues is delivered whole, as the in-memory basis holds
  * it, and not cut where the solver's choice within the cluster is arbitrary.

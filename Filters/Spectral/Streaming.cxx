@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Streaming.h"
 
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -19,14 +21,12 @@ StreamedFilter::StreamedFilter(const ConstRowView& X, StreamedDesign design)
 BasisSink StreamedFilter::Sink()
 {
   BasisSink sink;
-  sink.SpectrumFirst = true;
+  sink.HighestFirst = true;
   sink.Begin = [this](const BasisResult& basis) { this->Begin(basis); };
-  sink.Harmonics = [this](int first, const Vector& values, const DenseMatrix& harmonics)
-  { this->Add(values, harmonics, first); };
+  sink.Harmonics = [this](int, const Vector& values, const DenseMatrix& harmonics)
+  { this->Add(values, harmonics); };
   sink.Restart = [this]() { this->Sum.setZero(); };
-  // A harmonic whose gain is the re-injection gain adds nothing (Add): a low pass's harmonics
-  // above its transition (gain and re-injection gain exactly 0) are not solved for.
-  sink.Wanted = [this](int index) { return this->Gains[index] != this->HighFrequencyGain; };
+  sink.WantedUpTo = [this]() { return this->WantedUpTo; };
   return sink;
 }
 
@@ -35,12 +35,19 @@ void StreamedFilter::Begin(const BasisResult& basis)
 {
   this->Rows = basis.InputPointIds;
   this->Mass = basis.LumpedMass;
-  this->Gains = this->Design(basis.Pairs.Eigenvalues, this->HighFrequencyGain);
-  if (this->Gains.size() != basis.Pairs.Eigenvalues.size())
+  const Vector& lambda = basis.Pairs.Eigenvalues;
+  if (lambda.size() == 0 || !std::isfinite(lambda[lambda.size() - 1]))
   {
-    throw InvalidInput("a streamed filter's design gave " + std::to_string(this->Gains.size()) +
-      " gains for " + std::to_string(basis.Pairs.Eigenvalues.size()) + " harmonics");
+    throw InvalidInput("a streamed filter needs the highest eigenvalue before the harmonics");
   }
+  this->Parameters = this->Design(lambda[lambda.size() - 1], this->HighFrequencyGain);
+  // A harmonic whose gain is the re-injection gain adds nothing (Add): those above the frequency
+  // where F becomes constant, if that constant is hfGain (a low pass: 0 and 0), are not solved.
+  const double constant = ConstantAbove(this->Parameters);
+  const bool flat = std::isfinite(constant) &&
+    Gain(this->Parameters, std::nextafter(constant, std::numeric_limits<double>::infinity())) ==
+      this->HighFrequencyGain;
+  this->WantedUpTo = flat ? constant * constant : std::numeric_limits<double>::infinity();
   const Eigen::Index used = static_cast<Eigen::Index>(this->Rows.size());
   this->Weighted.resize(used, this->Signals.cols());
   for (Eigen::Index r = 0; r < used; ++r)
@@ -60,11 +67,11 @@ void StreamedFilter::Begin(const BasisResult& basis)
 }
 
 //------------------------------------------------------------------------------
-void StreamedFilter::Add(const Vector& values, const DenseMatrix& harmonics, int first)
+void StreamedFilter::Add(const Vector& values, const DenseMatrix& harmonics)
 {
   const Eigen::Index k = values.size();
   const DenseMatrix coefficients = harmonics.transpose() * this->Weighted;
-  const Vector gains = this->Gains.segment(first, k).array() - this->HighFrequencyGain;
+  const Vector gains = Gains(this->Parameters, values).array() - this->HighFrequencyGain;
   this->Sum.noalias() += harmonics * (gains.asDiagonal() * coefficients);
 }
 

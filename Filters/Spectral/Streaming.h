@@ -13,15 +13,19 @@
  * which is InverseTransform's formula (Filtering/Transfer.h) summed over the blocks: the filtered
  * part and eq. 10's re-injection of what the basis does not represent (B. Vallet and B. Levy,
  * 2008). Points of zero mass (used by no cell, left out, or Dirichlet boundary points) keep
- * their value in X, as FilterSignal keeps them. The gains come from the caller's design stage
- * (StreamedDesign), given the whole spectrum before any harmonic (BasisSink::SpectrumFirst): the
- * gains of relative units and the re-injection gain depend on the highest frequency.
+ * their value in X, as FilterSignal keeps them. The filter comes from the caller's design stage
+ * (StreamedDesign), given the highest eigenvalue lambda_{m-1} before any harmonic
+ * (BasisSink::HighestFirst): the frequencies of relative units and the re-injection gain depend
+ * on it; the gain of each harmonic is F(omega_k) of that filter, taken as the harmonic comes.
  *
- * Cost: only the harmonics whose gain differs from hfGain add to S; the others are not solved
- * for (BasisSink::Wanted). A low pass (hfGain 0 when its transition ends below the highest
+ * Cost: only the harmonics whose gain differs from hfGain add to S; those above the frequency
+ * where F becomes constant (ConstantAbove), when that constant is hfGain, are not solved for
+ * (BasisSink::WantedUpTo). A low pass (hfGain 0 when its transition ends below the highest
  * frequency) needs the harmonics below the end of its transition alone: at the default cutoff
  * (half the highest frequency, transition 0.1), eigenvalues below (0.5 * 1.05)^2 = 0.28 of the
- * highest, by Weyl's law (lambda_k grows as k) about the lowest 28 % of the m harmonics.
+ * highest, by Weyl's law (lambda_k grows as k) about the lowest 28 % of the m harmonics. With
+ * one connected component the highest eigenvalue itself costs a few inertia counts and one
+ * short band (ComputeBasis), not the whole spectrum.
  *
  * Memory: X, the sum S and D X on the used points (3 n c doubles), besides what ComputeBasis
  * streams with (EstimateStreamedMemory, Solver/Memory.h).
@@ -41,11 +45,11 @@
 namespace spectral
 {
 /**
- * The design stage of a streamed filter: given the m eigenvalues of the basis (ascending, in the
- * mesh's units), returns the m gains and sets `hfGain`, the gain of the frequencies the basis
- * does not represent (0 drops them).
+ * The design stage of a streamed filter: given the highest eigenvalue of the basis, lambda_{m-1}
+ * (mesh units), returns the filter in absolute frequencies (FilterParameters, ToAbsoluteUnits)
+ * and sets `hfGain`, the gain of the frequencies the basis does not represent (0 drops them).
  */
-using StreamedDesign = std::function<Vector(const Vector& lambda, double& hfGain)>;
+using StreamedDesign = std::function<FilterParameters(double highest, double& hfGain)>;
 
 /// Filters signals with a basis that streams (see the file documentation).
 class StreamedFilter
@@ -57,7 +61,7 @@ public:
    */
   StreamedFilter(const ConstRowView& X, StreamedDesign design);
 
-  /// The sink to set as BasisOptions::Sink (SpectrumFirst on); it refers to this filter, which
+  /// The sink to set as BasisOptions::Sink (HighestFirst on); it refers to this filter, which
   /// must outlive the ComputeBasis call.
   BasisSink Sink();
 
@@ -79,15 +83,18 @@ public:
 
 private:
   void Begin(const BasisResult& basis);
-  void Add(const Vector& values, const DenseMatrix& harmonics, int first);
+  void Add(const Vector& values, const DenseMatrix& harmonics);
 
   RowMatrix Signals;
   StreamedDesign Design;
   bool Begun = false;
   std::vector<int> Rows;
   Vector Mass;
-  Vector Gains;
+  /// The filter in absolute frequencies, its re-injection gain, and the largest eigenvalue
+  /// whose harmonic adds to S (infinity: any).
+  FilterParameters Parameters;
   double HighFrequencyGain = 0.0;
+  double WantedUpTo = 0.0;
   /// D X on the used points, and the sum S of the blocks' filtered parts there.
   DenseMatrix Weighted;
   DenseMatrix Sum;

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -466,6 +467,18 @@ Vector Gains(const FilterParameters& p, const Vector& lambda)
     out[k] = Evaluate(p, omega);
   }
   return out;
+}
+
+//------------------------------------------------------------------------------
+double ConstantAbove(const FilterParameters& p)
+{
+  Validate(p);
+  const std::vector<double> breakpoints = Breakpoints(p);
+  if (p.Kind == FilterKind::HeatDiffusion || breakpoints.empty())
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  return *std::max_element(breakpoints.begin(), breakpoints.end());
 }
 
 //------------------------------------------------------------------------------

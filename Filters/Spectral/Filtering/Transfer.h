@@ -188,6 +188,15 @@ enum class FrequencyUnits
 };
 
 /**
+ * The frequency above which F is constant: the end of the last step's transition (LowPass,
+ * HighPass, Enhancement: Cutoff (1 + Transition / 2); the band kinds: UpperCutoff (1 +
+ * Transition / 2)), the last control point (Custom); infinity for HeatDiffusion, which never is.
+ * Above it, every frequency gets the gain F(infinity) (a low pass: exactly 0).
+ * 	hrows InvalidInput as Gain.
+ */
+double ConstantAbove(const FilterParameters& p);
+
+/**
  * The highest computed frequency omega_max = sqrt(max(lambda_{m-1}, 0)).
  * \param lambda Eigenvalues, ascending, length m.
  * \return omega_max, 0 for an empty lambda.
