@@ -435,6 +435,8 @@ private:
   int DeliveredCount = 0;
   /// Pairs delivered by the current component's solve.
   int FromComponent = 0;
+  /// For each component, the pairs its solve in the streamed pass is asked for (WantedPass).
+  std::vector<int> PassAsked;
 };
 
 //------------------------------------------------------------------------------
@@ -534,8 +536,10 @@ ComponentChoice Stream::WantedPass(int& expected) const
   if (this->HighestOnly)
   {
     double shift = reach * this->ValueScale;
+    // At least two pairs: the first non-constant harmonic, whose eigenvalue the filter's
+    // warnings name, comes with the constant one.
     const int count = bound < 0.0 ? 0 : CountBelow(this->Ops.Stiffness, this->Ops.Mass, shift);
-    expected = std::min(count, expected);
+    expected = std::min(std::max(count, 2), expected);
     pass.Asked = { expected };
     pass.Pairs.resize(static_cast<std::size_t>(expected));
     return pass;
@@ -600,15 +604,17 @@ void Stream::Deliver(int component,
   for (int k = 0; k < count;)
   {
     const int local = first + k;
-    if (local >= static_cast<int>(index.size()) || index[static_cast<std::size_t>(local)] < 0)
+    // Pairs beyond the pass's request (a solve asked for 1 pair computes 2) are not delivered.
+    const int passed = std::min(
+      static_cast<int>(index.size()), this->PassAsked[static_cast<std::size_t>(component)]);
+    if (local >= passed || index[static_cast<std::size_t>(local)] < 0)
     {
       ++k;
       continue;
     }
     const int start = index[static_cast<std::size_t>(local)];
     int run = 1;
-    while (run < StreamedBlockColumns && k + run < count &&
-      local + run < static_cast<int>(index.size()) &&
+    while (run < StreamedBlockColumns && k + run < count && local + run < passed &&
       index[static_cast<std::size_t>(local + run)] == start + run)
     {
       ++run;
@@ -693,6 +699,7 @@ void Stream::Run(double massScale)
   int expected = m;
   const ComponentChoice pass =
     this->Planned || this->HighestOnly ? this->WantedPass(expected) : this->Choice;
+  this->PassAsked = pass.Asked;
   this->Result.Pairs.Eigenvalues.conservativeResize(m);
   const Monitor streamPart = this->Watch.Scaled(planned, 1.0);
   const ComponentSolver solve = [this](int component,

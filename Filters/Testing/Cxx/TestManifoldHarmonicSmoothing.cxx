@@ -369,12 +369,15 @@ bool TestOnlyConstantHarmonics(vtkPolyData* input)
 //------------------------------------------------------------------------------
 // The smoothing runs the transform and filter stages itself (vtkManifoldHarmonicsStages), not
 // through internal filters: the warning about a cutoff below the first non-zero frequency is the
-// smoothing's own, named for it, not a vtkSpectralFilter's passed on.
-bool TestCutoffWarningIsOwn(vtkPolyData* input)
+// smoothing's own, named for it, not a vtkSpectralFilter's passed on. Streamed, on a mesh where
+// the stream finds the highest eigenvalue alone and solves only the harmonics the low pass keeps
+// (spectral::StreamedFilter), the same warning comes once the stream knows the spectrum.
+bool TestCutoffWarningIsOwn(vtkPolyData* input, int storage, int harmonics)
 {
   vtkNew<vtkManifoldHarmonicSmoothing> smoothing;
   smoothing->SetInputData(input);
-  smoothing->SetNumberOfHarmonics(20);
+  smoothing->SetNumberOfHarmonics(harmonics);
+  smoothing->SetStorage(storage);
   smoothing->SetCutoffFraction(0.001);
   const ManifoldHarmonicsTest::Messages messages(smoothing);
   smoothing->Update();
@@ -700,7 +703,14 @@ int TestManifoldHarmonicSmoothing(int argc, char* argv[])
       { "ReuseProgressAbort", [] { return TestReuseProgressAbort(NoisySphere()); } },
       { "OnlyConstantHarmonics", [] { return TestOnlyConstantHarmonics(NoisySphere()); } },
       { "NoPolygons", TestNoPolygons },
-      { "CutoffWarningIsOwn", [] { return TestCutoffWarningIsOwn(NoisySphere()); } },
+      { "CutoffWarningIsOwn",
+        []
+        {
+          return TestCutoffWarningIsOwn(
+                   NoisySphere(), vtkManifoldHarmonicSmoothing::IN_MEMORY, 20) &&
+            TestCutoffWarningIsOwn(
+              NoisySphere(80, 60), vtkManifoldHarmonicSmoothing::STREAMED, 100);
+        } },
       { "StreamedSameAsInMemory", TestStreamedSameAsInMemory },
       { "MemoryLimitStreams", TestMemoryLimitStreams },
       { "StreamedNeedsSerialBuiltIn", TestStreamedNeedsSerialBuiltIn },
