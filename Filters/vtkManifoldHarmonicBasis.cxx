@@ -336,8 +336,16 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
           << ", Lanczos workspace and operators " << spectral::ByteCount(need.Krylov)
           << ", sparse factor " << spectral::ByteCount(need.Factor) << ", the process's own "
           << spectral::ByteCount(need.Overhead) << "), " << spectral::ByteCount(e.Available)
-          << " available (" << (limited ? "MemoryLimit" : "reported by the system")
-          << "). Compute fewer harmonics";
+          << " available (" << (limited ? "MemoryLimit" : "reported by the system");
+  // A basis file streamed into leaves the solve what its writer does not take (WriterBytes).
+  const std::uint64_t limit =
+    vtkManifoldHarmonicsParameters::MemoryLimitBytes(self->GetMemoryLimit());
+  if (limited && e.Available < limit)
+  {
+    message << " " << spectral::ByteCount(limit) << ", less "
+            << spectral::ByteCount(limit - e.Available) << " for the basis file's writer";
+  }
+  message << "). Compute fewer harmonics";
   if (!floats && !e.Streamed)
   {
     message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
