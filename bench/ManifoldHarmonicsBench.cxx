@@ -8,7 +8,9 @@
  * scipy.sparse.linalg.eigsh in shift-invert mode (through /usr/bin/python3) and prints the speed
  * ratio and the largest eigenvalue difference; with --slepc, SLEPc's Krylov-Schur with a MUMPS
  * factor the same way, nearest a target and by spectrum slicing (slepc_reference.py, Debian's
- * python3-slepc4py), and the ratio to the fastest peer that agrees (PeerAgreement).
+ * python3-slepc4py), and the ratio to the fastest peer that agrees (PeerAgreement). With
+ * --factor it times the factorization of L - sigma M, the solver's against MUMPS's
+ * (FactorComparison).
  *
  * Each case runs in a child process so that its peak memory is its own.
  *
@@ -34,7 +36,8 @@
  * and its change of units, which the torus of size 1 does not need).
  *
  * Usage: ManifoldHarmonicsBench [--case N:M]... [--band K] [--scan] [--volume] [--cloud]
- *        [--threads T] [--filter] [--eigenvalues-only] [--scipy] [--slepc] [--scipy-max-n N]
+ *        [--threads T] [--filter] [--eigenvalues-only] [--scipy] [--slepc] [--factor]
+ *        [--scipy-max-n N]
  *        [--workdir DIR]
  * Default cases: 10000:100 100000:500.
  */
@@ -77,6 +80,8 @@ struct Settings
   int BandSize = 0;
   bool Scipy = false;
   bool Slepc = false;
+  /// Also compare the factorization with MUMPS's (FactorComparison).
+  bool Factor = false;
   bool Filter = false;
   int ScipyMaxN = 200000;
   /// The torus with the defects of a range scan (ScanMesh).
@@ -205,6 +210,95 @@ std::vector<PeerRun> RunPeers(const Settings& settings,
   std::remove((base + "-L.mtx").c_str());
   std::remove((base + "-M.mtx").c_str());
   return runs;
+}
+
+/**
+ * The factorization of L - sigma M by the solver's SupernodalLDLT and by MUMPS (mumps_reference.py,
+ * through PETSc), at the same shifts: -0.01 (below the spectrum, scipy's shift), the middle of
+ * the pairs (between lambda_{m/2-1} and lambda_{m/2}) and the top (between lambda_{m-2} and
+ * lambda_{m-1}), in that order. For each: the seconds of the numerical factorization (MUMPS's
+ * first includes its analysis; the solver's analysis, CHOLMOD's, is given apart), the negative
+ * pivots (which must agree) and the seconds of solving FactorColumns random right-hand sides.
+ */
+constexpr int FactorColumns = 16;
+std::string FactorComparison(const Settings& settings,
+  const spectral::SparseMatrix& L,
+  const spectral::SparseMatrix& M,
+  const spectral::Vector& lambda)
+{
+  const Eigen::Index m = lambda.size();
+  std::vector<double> shifts = { -0.01 };
+  if (m >= 2)
+  {
+    shifts.push_back(0.5 * (lambda[m / 2 - 1] + lambda[m / 2]));
+    shifts.push_back(0.5 * (lambda[m - 2] + lambda[m - 1]));
+  }
+  char buffer[256];
+  std::string out;
+  Clock::time_point start = Clock::now();
+  spectral::SupernodalLDLT ldlt(L);
+  ldlt.SetThreads(settings.Threads);
+  std::snprintf(buffer,
+    sizeof(buffer),
+    "\n%17s factor, solve %d columns, negative pivots: ours "
+    "(analysis %.2f s)",
+    "",
+    FactorColumns,
+    Since(start));
+  out += buffer;
+  const spectral::DenseMatrix B = spectral::DenseMatrix::Random(L.rows(), FactorColumns);
+  std::vector<int> ours;
+  for (const double sigma : shifts)
+  {
+    const spectral::SparseMatrix A = L - sigma * M;
+    start = Clock::now();
+    const bool factored = ldlt.Factorize(A);
+    const double factor = Since(start);
+    start = Clock::now();
+    const spectral::DenseMatrix X = factored ? ldlt.Solve(B) : spectral::DenseMatrix();
+    const double solve = Since(start);
+    ours.push_back(factored ? ldlt.NegativePivots() : -1);
+    std::snprintf(buffer, sizeof(buffer), "  %.3f s, %.3f s, %d", factor, solve, ours.back());
+    out += buffer;
+  }
+  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
+  WriteMatrixMarket(L, base + "-L.mtx");
+  WriteMatrixMarket(M, base + "-M.mtx");
+  std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/mumps_reference.py " + base +
+    "-L.mtx " + base + "-M.mtx " + std::to_string(FactorColumns) + " " + base + "-mumps.txt";
+  for (const double sigma : shifts)
+  {
+    std::snprintf(buffer, sizeof(buffer), " %.17g", sigma);
+    command += buffer;
+  }
+  const int status = std::system(command.c_str());
+  out += "; MUMPS";
+  std::ifstream in(base + "-mumps.txt");
+  double sigma = 0.0;
+  double factor = 0.0;
+  int negative = 0;
+  double solve = 0.0;
+  std::size_t k = 0;
+  while (status == 0 && in >> sigma >> factor >> negative >> solve)
+  {
+    std::snprintf(buffer,
+      sizeof(buffer),
+      "  %.3f s, %.3f s, %d%s",
+      factor,
+      solve,
+      negative,
+      k < ours.size() && ours[k] == negative ? "" : " (differs)");
+    out += buffer;
+    ++k;
+  }
+  if (k != shifts.size())
+  {
+    out += "  failed";
+  }
+  std::remove((base + "-L.mtx").c_str());
+  std::remove((base + "-M.mtx").c_str());
+  std::remove((base + "-mumps.txt").c_str());
+  return out;
 }
 
 /// The largest relative difference between the first m eigenvalues of a peer and the product's
@@ -502,6 +596,11 @@ int RunCase(const Settings& settings, int n, int m)
     }
   }
 
+  if (settings.Factor && !settings.Cloud)
+  {
+    peers += FactorComparison(settings, L, M, result.Eigenvalues);
+  }
+
   std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e %s%s\n",
     static_cast<int>(L.rows()),
     m,
@@ -538,7 +637,7 @@ Settings Parse(int argc, char* argv[])
   {
     std::fprintf(stderr,
       "usage: %s [--case N:M]... [--band K] [--scan] [--volume] [--cloud] [--threads T] "
-      "[--filter] [--eigenvalues-only] [--scipy] [--slepc] "
+      "[--filter] [--eigenvalues-only] [--scipy] [--slepc] [--factor] "
       "[--scipy-max-n N] [--workdir DIR]\n",
       argv[0]);
     std::exit(2);
@@ -616,6 +715,10 @@ Settings Parse(int argc, char* argv[])
     else if (arg == "--slepc")
     {
       settings.Slepc = true;
+    }
+    else if (arg == "--factor")
+    {
+      settings.Factor = true;
     }
     else if (arg == "--filter")
     {
