@@ -527,8 +527,12 @@ ComponentChoice Stream::WantedPass(int& expected) const
   ComponentChoice pass = this->Choice;
   expected = static_cast<int>(this->Choice.Pairs.size());
   const Vector& lambda = this->Result.Pairs.Eigenvalues;
-  const double bound = this->Sink.WantedUpTo ? this->Sink.WantedUpTo() : lambda[0];
-  if (!this->Sink.WantedUpTo || lambda.size() != expected || !(bound < lambda[expected - 1]))
+  if (!this->Sink.WantedUpTo || lambda.size() != expected)
+  {
+    return pass;
+  }
+  const double bound = this->Sink.WantedUpTo();
+  if (!(bound < lambda[expected - 1]))
   {
     return pass;
   }

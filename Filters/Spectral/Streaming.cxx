@@ -69,7 +69,6 @@ void StreamedFilter::Begin(const BasisResult& basis)
 //------------------------------------------------------------------------------
 void StreamedFilter::Add(const Vector& values, const DenseMatrix& harmonics)
 {
-  const Eigen::Index k = values.size();
   const DenseMatrix coefficients = harmonics.transpose() * this->Weighted;
   const Vector gains = Gains(this->Parameters, values).array() - this->HighFrequencyGain;
   this->Sum.noalias() += harmonics * (gains.asDiagonal() * coefficients);
