@@ -62,6 +62,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -157,22 +158,45 @@ struct PeerRun
   std::vector<double> Lambda;
 };
 
+/// A case's matrices in Matrix Market files under WorkDir, for the reference scripts: written
+/// once for all of them, removed with this object. Base is the prefix of every file of the case.
+struct MatrixFiles
+{
+  MatrixFiles(const Settings& settings,
+    const spectral::SparseMatrix& L,
+    const spectral::SparseMatrix& M)
+    : Base(settings.WorkDir + "/mh-bench-" + std::to_string(getpid()))
+  {
+    WriteMatrixMarket(L, this->Base + "-L.mtx");
+    WriteMatrixMarket(M, this->Base + "-M.mtx");
+  }
+  ~MatrixFiles()
+  {
+    std::remove((this->Base + "-L.mtx").c_str());
+    std::remove((this->Base + "-M.mtx").c_str());
+  }
+  MatrixFiles(const MatrixFiles&) = delete;
+  MatrixFiles& operator=(const MatrixFiles&) = delete;
+
+  /// The scripts' first two arguments, and a space.
+  std::string Paths() const { return this->Base + "-L.mtx " + this->Base + "-M.mtx "; }
+
+  const std::string Base;
+};
+
 /**
  * The peers on the same matrices, one after the other (one sitting): scipy's eigsh as LaPy
  * calls it (`--scipy`), and SLEPc's Krylov-Schur with a MUMPS factor (`--slepc`), nearest the
  * target and by spectrum slicing over [-0.01, lambda_{m-1} (1 + 1e-6)], the product's own
- * interval. The matrices are written once, in Matrix Market files under WorkDir, and removed.
+ * interval.
  */
 std::vector<PeerRun> RunPeers(const Settings& settings,
-  const spectral::SparseMatrix& L,
-  const spectral::SparseMatrix& M,
+  const MatrixFiles& files,
   int m,
   double upper)
 {
-  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
-  WriteMatrixMarket(L, base + "-L.mtx");
-  WriteMatrixMarket(M, base + "-M.mtx");
-  const std::string matrices = base + "-L.mtx " + base + "-M.mtx " + std::to_string(m) + " ";
+  const std::string& base = files.Base;
+  const std::string matrices = files.Paths() + std::to_string(m) + " ";
   std::vector<PeerRun> runs;
   if (settings.Scipy)
   {
@@ -207,8 +231,6 @@ std::vector<PeerRun> RunPeers(const Settings& settings,
       runs.push_back(run);
     }
   }
-  std::remove((base + "-L.mtx").c_str());
-  std::remove((base + "-M.mtx").c_str());
   return runs;
 }
 
@@ -222,6 +244,7 @@ std::vector<PeerRun> RunPeers(const Settings& settings,
  */
 constexpr int FactorColumns = 16;
 std::string FactorComparison(const Settings& settings,
+  const MatrixFiles& files,
   const spectral::SparseMatrix& L,
   const spectral::SparseMatrix& M,
   const spectral::Vector& lambda)
@@ -261,11 +284,9 @@ std::string FactorComparison(const Settings& settings,
     std::snprintf(buffer, sizeof(buffer), "  %.3f s, %.3f s, %d", factor, solve, ours.back());
     out += buffer;
   }
-  const std::string base = settings.WorkDir + "/mh-bench-" + std::to_string(getpid());
-  WriteMatrixMarket(L, base + "-L.mtx");
-  WriteMatrixMarket(M, base + "-M.mtx");
-  std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/mumps_reference.py " + base +
-    "-L.mtx " + base + "-M.mtx " + std::to_string(FactorColumns) + " " + base + "-mumps.txt";
+  const std::string& base = files.Base;
+  std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/mumps_reference.py " +
+    files.Paths() + std::to_string(FactorColumns) + " " + base + "-mumps.txt";
   for (const double sigma : shifts)
   {
     std::snprintf(buffer, sizeof(buffer), " %.17g", sigma);
@@ -295,8 +316,6 @@ std::string FactorComparison(const Settings& settings,
   {
     out += "  failed";
   }
-  std::remove((base + "-L.mtx").c_str());
-  std::remove((base + "-M.mtx").c_str());
   std::remove((base + "-mumps.txt").c_str());
   return out;
 }
@@ -553,12 +572,19 @@ int RunCase(const Settings& settings, int n, int m)
   }
 
   std::string peers = "";
-  if ((settings.Scipy || settings.Slepc) && L.rows() <= settings.ScipyMaxN)
+  const bool runPeers = (settings.Scipy || settings.Slepc) && L.rows() <= settings.ScipyMaxN;
+  const bool compareFactor = settings.Factor && !settings.Cloud;
+  std::unique_ptr<MatrixFiles> files;
+  if (runPeers || compareFactor)
+  {
+    files = std::make_unique<MatrixFiles>(settings, L, M);
+  }
+  if (runPeers)
   {
     const double upper = result.Eigenvalues[m - 1] * (1.0 + 1e-6);
     double fastest = std::numeric_limits<double>::infinity();
     std::string fastestName;
-    for (const PeerRun& run : RunPeers(settings, L, M, m, upper))
+    for (const PeerRun& run : RunPeers(settings, *files, m, upper))
     {
       char buffer[160];
       const double difference = PeerDifference(run.Lambda, result.Eigenvalues);
@@ -596,9 +622,9 @@ int RunCase(const Settings& settings, int n, int m)
     }
   }
 
-  if (settings.Factor && !settings.Cloud)
+  if (compareFactor)
   {
-    peers += FactorComparison(settings, L, M, result.Eigenvalues);
+    peers += FactorComparison(settings, *files, L, M, result.Eigenvalues);
   }
 
   std::printf("%8d %6d %8.2f %7.2f %7.2f %7.2f %7.2f %7.2f %7.2f %5d %7lld %8.1e %8.1e %s%s\n",

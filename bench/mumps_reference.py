@@ -18,24 +18,9 @@ import sys
 import time
 
 import numpy as np
-import scipy.io
 
-import petsc4py
-
-petsc4py.init(sys.argv[:1])
-from petsc4py import PETSc  # noqa: E402
-
-
-def petsc_matrix(path):
-    """The symmetric Matrix Market file as a PETSc AIJ matrix holding both triangles."""
-    A = scipy.io.mmread(path).tocsr()
-    A.sort_indices()
-    matrix = PETSc.Mat().createAIJ(
-        size=A.shape, csr=(A.indptr.astype(PETSc.IntType), A.indices.astype(PETSc.IntType),
-                           A.data))
-    matrix.setOption(PETSc.Mat.Option.SYMMETRIC, True)
-    matrix.assemble()
-    return matrix
+# The matrices as the SLEPc reference reads them (it initializes PETSc).
+from slepc_reference import PETSc, petsc_matrix
 
 
 def main():
