@@ -237,10 +237,11 @@ std::vector<PeerRun> RunPeers(const Settings& settings,
 /**
  * The factorization of L - sigma M by the solver's SupernodalLDLT and by MUMPS (mumps_reference.py,
  * through PETSc), at the same shifts: -0.01 (below the spectrum, scipy's shift), the middle of
- * the pairs (between lambda_{m/2-1} and lambda_{m/2}) and the top (between lambda_{m-2} and
- * lambda_{m-1}), in that order. For each: the seconds of the numerical factorization (MUMPS's
- * first includes its analysis; the solver's analysis, CHOLMOD's, is given apart), the negative
- * pivots (which must agree) and the seconds of solving FactorColumns random right-hand sides.
+ * the pairs (between lambda_{j-1} and lambda_j for the first j >= m/2 where they differ by more
+ * than 1e-6 relative) and the top (the same for the last such j <= m - 1), in that order. For each:
+ * the seconds of the numerical factorization (MUMPS's first includes its analysis; the solver's
+ * analysis, CHOLMOD's, is given apart), the negative pivots (which must agree) and the seconds of
+ * solving FactorColumns random right-hand sides.
  */
 constexpr int FactorColumns = 16;
 std::string FactorComparison(const Settings& settings,
@@ -253,8 +254,22 @@ std::string FactorComparison(const Settings& settings,
   std::vector<double> shifts = { -0.01 };
   if (m >= 2)
   {
-    shifts.push_back(0.5 * (lambda[m / 2 - 1] + lambda[m / 2]));
-    shifts.push_back(0.5 * (lambda[m - 2] + lambda[m - 1]));
+    // Between two distinct eigenvalues: a symmetric mesh (the ball) has multiple ones, and at
+    // a shift inside a multiplet the count is decided by rounding.
+    const auto distinct = [&lambda](Eigen::Index k)
+    { return lambda[k] - lambda[k - 1] >= 1e-6 * std::abs(lambda[k]); };
+    Eigen::Index middle = m / 2;
+    while (middle + 1 < m && !distinct(middle))
+    {
+      ++middle;
+    }
+    Eigen::Index top = m - 1;
+    while (top > 1 && !distinct(top))
+    {
+      --top;
+    }
+    shifts.push_back(0.5 * (lambda[middle - 1] + lambda[middle]));
+    shifts.push_back(0.5 * (lambda[top - 1] + lambda[top]));
   }
   char buffer[256];
   std::string out;
