@@ -39,6 +39,16 @@ constexpr Eigen::Index ParallelRows = 2000;
  */
 constexpr double SubtreesPerThread = 8.0;
 
+/// Columns of a supernode factored together by FactorPanel (a multiple of the SIMD width).
+constexpr int PanelColumns = 64;
+
+/// The tree-parallel solve splits subtrees until no thread has more than this times its share.
+constexpr double SolveImbalance = 1.1;
+
+/// The solves read the factor front to back, then back to front, fetching this many bytes ahead
+/// (its index array a quarter of it): 32 KB measured best (4 KB to 128 KB tried).
+constexpr std::ptrdiff_t PrefetchDistance = 32768;
+
 /// Scratch space of the factorization: aligned (AlignedBuffer, Common/Mesh.h), so that the
 /// rounding of a product does not depend on the thread that computes it.
 using ScratchBuffer = AlignedBuffer;
@@ -592,6 +602,7 @@ struct SupernodalLDLT::Workspace
   ScratchBuffer Weighted;
   ScratchBuffer Update;
   ScratchBuffer Pivots;
+  ScratchBuffer Panel;
   explicit Workspace(Eigen::Index n)
     : Local(static_cast<std::size_t>(n), -1)
   {
@@ -610,6 +621,10 @@ bool SupernodalLDLT::Factorize(const SparseMatrix& A)
 
   this->Negative = 0;
   const int threads = this->Size < ParallelRows ? 1 : ResolveThreads(this->Threads);
+  if (this->Plan.MadeFor != threads)
+  {
+    this->MakeSolvePlan(threads);
+  }
   if (threads > 1 && this->Supernodes() > 1)
   {
     return this->FactorOnThreads(threads);
@@ -626,6 +641,80 @@ bool SupernodalLDLT::Factorize(const SparseMatrix& A)
   this->Negative = negative;
   return true;
 }
+
+namespace
+{
+/**
+ * LDL^T without pivoting of a supernode's columns in place: X (nsrow x nscol, column-major,
+ * stride nsrow) holds the assembled columns [A11; A21] (the lower triangle of A11) and receives
+ * [L11; L21] with D on the diagonal of L11 (L's unit diagonal is not stored); D receives the
+ * pivots. PanelColumns columns at a time: the pivots of a block column one by one (matrix-vector
+ * products), then the rows below it by a triangular solve and the columns to its right by one
+ * matrix product, so that a wide supernode (a volume's separators: a few thousand columns)
+ * runs at the speed of matrix products rather than of matrix-vector products.
+ * \param scratch holds a copy of L D for the product.
+ * \param negative incremented by the number of negative pivots.
+ * \return false on a zero or non-finite pivot or a non-finite entry of L.
+ */
+bool FactorPanel(double* X, int nsrow, int nscol, double* D, ScratchBuffer& scratch, int& negative)
+{
+  for (int k0 = 0; k0 < nscol; k0 += PanelColumns)
+  {
+    const int kb = std::min(PanelColumns, nscol - k0);
+    BlockView Akk(X + static_cast<std::ptrdiff_t>(k0) * nsrow + k0, kb, kb, Stride(nsrow));
+    for (int j = 0; j < kb; ++j)
+    {
+      if (j > 0)
+      {
+        const Vector v =
+          Eigen::Map<const Vector>(D + k0, j).cwiseProduct(Akk.row(j).head(j).transpose());
+        Akk.col(j).tail(kb - j).noalias() -= Akk.block(j, 0, kb - j, j) * v;
+      }
+      const double pivot = Akk(j, j);
+      if (!std::isfinite(pivot) || pivot == 0.0)
+      {
+        return false;
+      }
+      D[k0 + j] = pivot;
+      negative += pivot < 0.0 ? 1 : 0;
+      Akk.col(j).tail(kb - j - 1) /= pivot;
+    }
+    const int below = nsrow - k0 - kb;
+    if (below == 0)
+    {
+      continue;
+    }
+    // The rows below the block: L D = A L_kk^-T, then L.
+    BlockView P(X + static_cast<std::ptrdiff_t>(k0) * nsrow + k0 + kb, below, kb, Stride(nsrow));
+    Akk.transpose().triangularView<Eigen::UnitUpper>().solveInPlace<Eigen::OnTheRight>(P);
+    const int right = nscol - k0 - kb;
+    BlockView LD(Scratch(scratch, static_cast<std::size_t>(right) * kb), right, kb, Stride(right));
+    LD = P.topRows(right);
+    for (int j = 0; j < kb; ++j)
+    {
+      P.col(j) /= D[k0 + j];
+      if (!P.col(j).allFinite())
+      {
+        return false;
+      }
+    }
+    if (right == 0)
+    {
+      continue;
+    }
+    // The columns to the right: A -= L D L^T, the lower triangle of their diagonal block and
+    // every row below it.
+    BlockView A22(
+      X + static_cast<std::ptrdiff_t>(k0 + kb) * nsrow + k0 + kb, below, right, Stride(nsrow));
+    A22.topRows(right).triangularView<Eigen::Lower>() -= P.topRows(right) * LD.transpose();
+    if (below > right)
+    {
+      A22.bottomRows(below - right).noalias() -= P.bottomRows(below - right) * LD.transpose();
+    }
+  }
+  return true;
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 bool SupernodalLDLT::FactorSupernode(int s, Workspace& work, int& negative)
@@ -689,40 +778,8 @@ bool SupernodalLDLT::FactorSupernode(int s, Workspace& work, int& negative)
     }
   }
 
-  // Dense LDL^T of the diagonal block, without pivoting.
-  BlockView X11(X, nscol, nscol, Stride(nsrow));
-  double* D = Scratch(work.Pivots, static_cast<std::size_t>(nscol));
-  for (int j = 0; j < nscol; ++j)
-  {
-    if (j > 0)
-    {
-      const Vector v = Eigen::Map<const Vector>(D, j).cwiseProduct(X11.row(j).head(j).transpose());
-      X11.col(j).tail(nscol - j).noalias() -= X11.block(j, 0, nscol - j, j) * v;
-    }
-    const double pivot = X11(j, j);
-    if (!std::isfinite(pivot) || pivot == 0.0)
-    {
-      return false;
-    }
-    D[j] = pivot;
-    negative += pivot < 0.0 ? 1 : 0;
-    X11.col(j).tail(nscol - j - 1) /= pivot;
-  }
-  // L21 = A21 L11^-T D^-1.
-  if (nsrow > nscol)
-  {
-    BlockView X21(X + nscol, nsrow - nscol, nscol, Stride(nsrow));
-    X11.transpose().triangularView<Eigen::UnitUpper>().solveInPlace<Eigen::OnTheRight>(X21);
-    for (int j = 0; j < nscol; ++j)
-    {
-      X21.col(j) /= D[j];
-      if (!X21.col(j).allFinite())
-      {
-        return false;
-      }
-    }
-  }
-  return true;
+  return FactorPanel(
+    X, nsrow, nscol, Scratch(work.Pivots, static_cast<std::size_t>(nscol)), work.Panel, negative);
 }
 
 //------------------------------------------------------------------------------
@@ -770,11 +827,29 @@ bool SupernodalLDLT::FactorTask(const int* first,
 }
 
 //------------------------------------------------------------------------------
+int SupernodalLDLT::WidestSupernode() const
+{
+  int widest = 0;
+  for (int s = 0; s < this->Supernodes(); ++s)
+  {
+    widest = std::max(widest,
+      this->First[static_cast<std::size_t>(s) + 1] - this->First[static_cast<std::size_t>(s)]);
+  }
+  return widest;
+}
+
+//------------------------------------------------------------------------------
 DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
 {
   DenseMatrix X(B.rows(), B.cols());
-  // Contiguous ranges of at least 4 columns a thread, each solved MaxWidth columns at a time.
   const int threads = this->Size < ParallelRows ? 1 : ResolveThreads(this->Threads);
+  if (this->Plan.Threads > 1 && this->Plan.MadeFor == threads)
+  {
+    // MaxWidth columns at a time, each block on all threads.
+    this->SolveColumns(B, X, 0, B.cols(), true);
+    return X;
+  }
+  // Contiguous ranges of at least 4 columns a thread, each solved MaxWidth columns at a time.
   const int parts = static_cast<int>(std::min<Eigen::Index>(threads, (B.cols() + 3) / 4));
   ForEachRowRange(B.cols(),
     parts,
@@ -782,7 +857,7 @@ DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
     {
       if (count > 0)
       {
-        this->SolveColumns(B, X, first, count);
+        this->SolveColumns(B, X, first, count, false);
       }
     });
   return X;
@@ -804,124 +879,365 @@ DenseMatrix SupernodalLDLT::Solve(const Eigen::Ref<const DenseMatrix>& B) const
  * the solve waits for the factor instead: StreamPrefetch fetches it ahead.
  */
 template<int W>
-void SupernodalLDLT::SolveRows(double* Y) const
+void SupernodalLDLT::Forward(const std::vector<Range>& ranges, double* Y, double* far) const
 {
   using Row = Eigen::Matrix<double, W, 1>;
   using RowView = Eigen::Map<Row>;
   using ConstRowView = Eigen::Map<const Row>;
   const auto row = [Y](int k) { return Y + static_cast<std::size_t>(k) * W; };
-  const int nsuper = this->Supernodes();
-  // The factor is read front to back, then back to front; 32 KB ahead measured best (4 KB to
-  // 128 KB tried).
-  const std::ptrdiff_t distance = 32768;
-  const std::size_t valueBytes = this->Values.size() * sizeof(double);
-  const std::size_t indexBytes = this->RowIndex.size() * sizeof(int);
-  StreamPrefetch values(this->Values.data(), valueBytes, distance);
-  StreamPrefetch indices(this->RowIndex.data(), indexBytes, distance / 4);
-  for (int s = 0; s < nsuper; ++s) // L D y = P b
+  for (const Range& range : ranges)
   {
-    const Node node = this->Supernode(s);
-    const int c = node.Columns;
-    const int r = node.Rows;
-    const double* L = node.Values;
-    values.Reached(L);
-    indices.Reached(node.RowIndex);
-    // The supernode's own rows: unit lower triangular L11.
-    for (int j = 0; j < c; ++j)
+    // Rows from `outside` on lie above the subtree: they go to `far`.
+    const int outside =
+      far ? this->First[static_cast<std::size_t>(range.second)] : static_cast<int>(this->Size);
+    const double* values =
+      this->Values.data() + this->ValueStart[static_cast<std::size_t>(range.first)];
+    const int* indices =
+      this->RowIndex.data() + this->RowStart[static_cast<std::size_t>(range.first)];
+    StreamPrefetch valueStream(values,
+      (this->ValueStart[static_cast<std::size_t>(range.second)] -
+        this->ValueStart[static_cast<std::size_t>(range.first)]) *
+        sizeof(double),
+      PrefetchDistance);
+    StreamPrefetch indexStream(indices,
+      static_cast<std::size_t>(this->RowStart[static_cast<std::size_t>(range.second)] -
+        this->RowStart[static_cast<std::size_t>(range.first)]) *
+        sizeof(int),
+      PrefetchDistance / 4);
+    for (int s = range.first; s < range.second; ++s) // L D y = P b
     {
-      const Row y = ConstRowView(row(node.First + j));
-      for (int i = j + 1; i < c; ++i)
+      const Node node = this->Supernode(s);
+      const int c = node.Columns;
+      const int r = node.Rows;
+      const double* L = node.Values;
+      valueStream.Reached(L);
+      indexStream.Reached(node.RowIndex);
+      // The supernode's own rows: unit lower triangular L11.
+      for (int j = 0; j < c; ++j)
       {
-        RowView(row(node.First + i)) -= L[static_cast<std::size_t>(j) * r + i] * y;
+        const Row y = ConstRowView(row(node.First + j));
+        for (int i = j + 1; i < c; ++i)
+        {
+          RowView(row(node.First + i)) -= L[static_cast<std::size_t>(j) * r + i] * y;
+        }
       }
-    }
-    // The rows below: each updated once with all the supernode's columns.
-    SubtractRows<W>(Y, node.RowIndex + c, r - c, L + c, r, c, row(node.First));
-    for (int j = 0; j < c; ++j)
-    {
-      RowView(row(node.First + j)) /= L[static_cast<std::size_t>(j) * (r + 1)];
-    }
-  }
-  StreamPrefetch valuesBack(this->Values.data(), valueBytes, -distance);
-  StreamPrefetch indicesBack(this->RowIndex.data(), indexBytes, -distance / 4);
-  for (int s = nsuper - 1; s >= 0; --s) // L^T x = z
-  {
-    const Node node = this->Supernode(s);
-    const int c = node.Columns;
-    const int r = node.Rows;
-    const double* L = node.Values;
-    valuesBack.Reached(L + static_cast<std::size_t>(c) * r);
-    indicesBack.Reached(node.RowIndex + r);
-    // The rows below: each read once for up to eight of the supernode's columns. Narrower
-    // groups split every sum over interleaved rows, so that at least eight sums are under way.
-    const auto gather = [&](auto group, auto phases, int j)
-    {
-      GatherColumns<W, decltype(group)::value, decltype(phases)::value>(Y,
-        node.RowIndex + c,
-        r - c,
-        L + static_cast<std::size_t>(j) * r + c,
-        r,
-        row(node.First + j));
-    };
-    using One = std::integral_constant<int, 1>;
-    using Two = std::integral_constant<int, 2>;
-    using Three = std::integral_constant<int, 3>;
-    using Four = std::integral_constant<int, 4>;
-    using Eight = std::integral_constant<int, 8>;
-    int j0 = 0;
-    for (; j0 + 8 <= c; j0 += 8)
-    {
-      gather(Eight(), One(), j0);
-    }
-    if (j0 + 4 <= c)
-    {
-      gather(Four(), Two(), j0);
-      j0 += 4;
-    }
-    switch (c - j0)
-    {
-      case 3:
-        gather(Three(), Three(), j0);
-        break;
-      case 2:
-        gather(Two(), Four(), j0);
-        break;
-      case 1:
-        gather(One(), Eight(), j0);
-        break;
-      default:
-        break;
-    }
-    // The supernode's own rows: unit upper triangular L11^T.
-    for (int j = c - 1; j >= 0; --j)
-    {
-      RowView target(row(node.First + j));
-      Row x = target;
-      for (int i = j + 1; i < c; ++i)
+      // The rows below: each updated once with all the supernode's columns; those above the
+      // subtree in `far`.
+      const int inside = static_cast<int>(
+        std::lower_bound(node.RowIndex + c, node.RowIndex + r, outside) - node.RowIndex);
+      SubtractRows<W>(Y, node.RowIndex + c, inside - c, L + c, r, c, row(node.First));
+      if (inside < r)
       {
-        x -= L[static_cast<std::size_t>(j) * r + i] * ConstRowView(row(node.First + i));
+        SubtractRows<W>(far, node.RowIndex + inside, r - inside, L + inside, r, c, row(node.First));
       }
-      target = x;
+      for (int j = 0; j < c; ++j)
+      {
+        RowView(row(node.First + j)) /= L[static_cast<std::size_t>(j) * (r + 1)];
+      }
     }
   }
 }
 
 //------------------------------------------------------------------------------
-void SupernodalLDLT::SolveRowsOfWidth(int width, double* Y) const
+template<int W>
+void SupernodalLDLT::Backward(const std::vector<Range>& ranges, double* Y) const
+{
+  using Row = Eigen::Matrix<double, W, 1>;
+  using RowView = Eigen::Map<Row>;
+  using ConstRowView = Eigen::Map<const Row>;
+  const auto row = [Y](int k) { return Y + static_cast<std::size_t>(k) * W; };
+  for (auto range = ranges.rbegin(); range != ranges.rend(); ++range)
+  {
+    const double* values =
+      this->Values.data() + this->ValueStart[static_cast<std::size_t>(range->first)];
+    const int* indices =
+      this->RowIndex.data() + this->RowStart[static_cast<std::size_t>(range->first)];
+    StreamPrefetch valueStream(values,
+      (this->ValueStart[static_cast<std::size_t>(range->second)] -
+        this->ValueStart[static_cast<std::size_t>(range->first)]) *
+        sizeof(double),
+      -PrefetchDistance);
+    StreamPrefetch indexStream(indices,
+      static_cast<std::size_t>(this->RowStart[static_cast<std::size_t>(range->second)] -
+        this->RowStart[static_cast<std::size_t>(range->first)]) *
+        sizeof(int),
+      -PrefetchDistance / 4);
+    for (int s = range->second - 1; s >= range->first; --s) // L^T x = z
+    {
+      const Node node = this->Supernode(s);
+      const int c = node.Columns;
+      const int r = node.Rows;
+      const double* L = node.Values;
+      valueStream.Reached(L + static_cast<std::size_t>(c) * r);
+      indexStream.Reached(node.RowIndex + r);
+      // The rows below: each read once for up to eight of the supernode's columns. Narrower
+      // groups split every sum over interleaved rows, so that at least eight sums are under way.
+      const auto gather = [&](auto group, auto phases, int j)
+      {
+        GatherColumns<W, decltype(group)::value, decltype(phases)::value>(Y,
+          node.RowIndex + c,
+          r - c,
+          L + static_cast<std::size_t>(j) * r + c,
+          r,
+          row(node.First + j));
+      };
+      using One = std::integral_constant<int, 1>;
+      using Two = std::integral_constant<int, 2>;
+      using Three = std::integral_constant<int, 3>;
+      using Four = std::integral_constant<int, 4>;
+      using Eight = std::integral_constant<int, 8>;
+      int j0 = 0;
+      for (; j0 + 8 <= c; j0 += 8)
+      {
+        gather(Eight(), One(), j0);
+      }
+      if (j0 + 4 <= c)
+      {
+        gather(Four(), Two(), j0);
+        j0 += 4;
+      }
+      switch (c - j0)
+      {
+        case 3:
+          gather(Three(), Three(), j0);
+          break;
+        case 2:
+          gather(Two(), Four(), j0);
+          break;
+        case 1:
+          gather(One(), Eight(), j0);
+          break;
+        default:
+          break;
+      }
+      // The supernode's own rows: unit upper triangular L11^T.
+      for (int j = c - 1; j >= 0; --j)
+      {
+        RowView target(row(node.First + j));
+        Row x = target;
+        for (int i = j + 1; i < c; ++i)
+        {
+          x -= L[static_cast<std::size_t>(j) * r + i] * ConstRowView(row(node.First + i));
+        }
+        target = x;
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+template<int W>
+void SupernodalLDLT::SolveRows(double* Y, bool planned) const
+{
+  const SolvePlan& plan = this->Plan;
+  if (!planned || plan.Threads <= 1)
+  {
+    const std::vector<Range> all = { Range(0, this->Supernodes()) };
+    this->Forward<W>(all, Y, nullptr);
+    this->Backward<W>(all, Y);
+    return;
+  }
+  // Each thread's updates of the rows above its subtrees, in rows of its own copy of Y's shape
+  // (only those rows are touched, so only their pages are ever allocated).
+  const std::size_t size = static_cast<std::size_t>(this->Size) * W;
+  std::vector<std::unique_ptr<double[]>> far(static_cast<std::size_t>(plan.Threads));
+  const auto topRows = [this, &plan](const auto& visit)
+  {
+    for (const Range& range : plan.Top)
+    {
+      visit(this->First[static_cast<std::size_t>(range.first)],
+        this->First[static_cast<std::size_t>(range.second)]);
+    }
+  };
+  ForEachRowRange(plan.Threads,
+    plan.Threads,
+    [&](int, Eigen::Index thread, Eigen::Index count)
+    {
+      for (Eigen::Index t = thread; t < thread + count; ++t)
+      {
+        std::unique_ptr<double[]>& mine = far[static_cast<std::size_t>(t)];
+        mine.reset(new double[size]);
+        topRows(
+          [&mine](int first, int last)
+          {
+            std::fill(mine.get() + static_cast<std::size_t>(first) * W,
+              mine.get() + static_cast<std::size_t>(last) * W,
+              0.0);
+          });
+        this->Forward<W>(plan.Subtrees[static_cast<std::size_t>(t)], Y, mine.get());
+      }
+    });
+  // In thread order: the sum does not depend on which thread finished first.
+  for (const std::unique_ptr<double[]>& mine : far)
+  {
+    topRows(
+      [Y, &mine](int first, int last)
+      {
+        for (std::size_t k = static_cast<std::size_t>(first) * W;
+             k < static_cast<std::size_t>(last) * W;
+             ++k)
+        {
+          Y[k] += mine[k];
+        }
+      });
+  }
+  this->Forward<W>(plan.Top, Y, nullptr);
+  this->Backward<W>(plan.Top, Y);
+  ForEachRowRange(plan.Threads,
+    plan.Threads,
+    [&](int, Eigen::Index thread, Eigen::Index count)
+    {
+      for (Eigen::Index t = thread; t < thread + count; ++t)
+      {
+        this->Backward<W>(plan.Subtrees[static_cast<std::size_t>(t)], Y);
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+void SupernodalLDLT::MakeSolvePlan(int threads)
+{
+  this->Plan = SolvePlan();
+  this->Plan.MadeFor = threads;
+  const int count = this->Supernodes();
+  if (threads <= 1 || count < 2)
+  {
+    return;
+  }
+  // Work of a subtree: the entries of the factor its solve reads.
+  std::vector<double> work(static_cast<std::size_t>(count));
+  std::vector<int> size(static_cast<std::size_t>(count), 1);
+  std::vector<std::vector<int>> children(static_cast<std::size_t>(count));
+  std::priority_queue<std::pair<double, int>> largest;
+  double total = 0.0;
+  for (int s = 0; s < count; ++s)
+  {
+    const std::size_t u = static_cast<std::size_t>(s);
+    work[u] += static_cast<double>(this->ValueStart[u + 1] - this->ValueStart[u]);
+    const int parent = this->Parent[u];
+    // Children before parents, and each supernode's rows below its own columns ascending: the
+    // split of Forward depends on both.
+    if (parent != -1 && parent <= s)
+    {
+      return;
+    }
+    const Node node = this->Supernode(s);
+    if (!std::is_sorted(node.RowIndex + node.Columns, node.RowIndex + node.Rows))
+    {
+      return;
+    }
+    if (parent == -1)
+    {
+      largest.emplace(work[u], s);
+      total += work[u];
+    }
+    else
+    {
+      work[static_cast<std::size_t>(parent)] += work[u];
+      size[static_cast<std::size_t>(parent)] += size[u];
+      children[static_cast<std::size_t>(parent)].push_back(s);
+    }
+  }
+  // Split the heaviest subtree until the subtrees can be shared out evenly (Geist and Ng's
+  // rule): the largest-first assignment of the subtrees to the threads leaves none with more than
+  // SolveImbalance times its share, or the heaviest is a single supernode.
+  std::vector<char> top(static_cast<std::size_t>(count), 0);
+  std::vector<std::pair<double, int>> subtrees;
+  std::vector<double> load;
+  while (!largest.empty())
+  {
+    subtrees.clear();
+    auto queue = largest;
+    double sum = 0.0;
+    while (!queue.empty())
+    {
+      subtrees.push_back(queue.top());
+      sum += queue.top().first;
+      queue.pop();
+    }
+    load.assign(static_cast<std::size_t>(threads), 0.0);
+    for (const std::pair<double, int>& subtree : subtrees)
+    {
+      *std::min_element(load.begin(), load.end()) += subtree.first;
+    }
+    const std::pair<double, int> heaviest = largest.top();
+    const std::vector<int>& below = children[static_cast<std::size_t>(heaviest.second)];
+    if (*std::max_element(load.begin(), load.end()) <= SolveImbalance * sum / threads ||
+      below.empty())
+    {
+      break;
+    }
+    largest.pop();
+    top[static_cast<std::size_t>(heaviest.second)] = 1;
+    for (const int child : below)
+    {
+      largest.emplace(work[static_cast<std::size_t>(child)], child);
+    }
+  }
+  SolvePlan plan;
+  plan.MadeFor = threads;
+  plan.Threads = threads;
+  plan.Subtrees.resize(static_cast<std::size_t>(threads));
+  load.assign(static_cast<std::size_t>(threads), 0.0);
+  for (const std::pair<double, int>& subtree : subtrees)
+  {
+    // A subtree must be its consecutive supernodes, its root last (a postordered tree).
+    const int root = subtree.second;
+    const int first = root - size[static_cast<std::size_t>(root)] + 1;
+    for (int s = first; s < root; ++s)
+    {
+      int up = s;
+      while (up != -1 && up < root)
+      {
+        up = this->Parent[static_cast<std::size_t>(up)];
+      }
+      if (up != root)
+      {
+        return;
+      }
+    }
+    const std::size_t least =
+      static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[least] += subtree.first;
+    plan.Subtrees[least].emplace_back(first, root + 1);
+  }
+  for (std::vector<Range>& ranges : plan.Subtrees)
+  {
+    std::sort(ranges.begin(), ranges.end());
+  }
+  for (int s = 0; s < count; ++s)
+  {
+    if (top[static_cast<std::size_t>(s)])
+    {
+      if (!plan.Top.empty() && plan.Top.back().second == s)
+      {
+        ++plan.Top.back().second;
+      }
+      else
+      {
+        plan.Top.emplace_back(s, s + 1);
+      }
+    }
+  }
+  this->Plan = std::move(plan);
+}
+
+//------------------------------------------------------------------------------
+void SupernodalLDLT::SolveRowsOfWidth(int width, double* Y, bool planned) const
 {
   switch (width)
   {
     case 4:
-      this->SolveRows<4>(Y);
+      this->SolveRows<4>(Y, planned);
       break;
     case 8:
-      this->SolveRows<8>(Y);
+      this->SolveRows<8>(Y, planned);
       break;
     case 12:
-      this->SolveRows<12>(Y);
+      this->SolveRows<12>(Y, planned);
       break;
     default:
-      this->SolveRows<16>(Y);
+      this->SolveRows<16>(Y, planned);
       break;
   }
 }
@@ -930,7 +1246,8 @@ void SupernodalLDLT::SolveRowsOfWidth(int width, double* Y) const
 void SupernodalLDLT::SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
   DenseMatrix& X,
   Eigen::Index first,
-  Eigen::Index count) const
+  Eigen::Index count,
+  bool planned) const
 {
   const Eigen::Index n = this->Size;
   // Not initialized: the copy below writes every entry (a zero fill of a few MB per solve showed
@@ -951,7 +1268,7 @@ void SupernodalLDLT::SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
       target.head(used) = B.row(i).segment(column, used);
       target.tail(width - used).setZero();
     }
-    this->SolveRowsOfWidth(width, rows.get());
+    this->SolveRowsOfWidth(width, rows.get(), planned);
     for (Eigen::Index i = 0; i < n; ++i)
     {
       X.row(i).segment(column, used) = Y.row(this->Inverse[static_cast<std::size_t>(i)]).head(used);

@@ -21,7 +21,8 @@
  * above them as soon as their children are done. Left-looking, a supernode is written only by
  * the thread that factors it, and it takes the updates of its descendants in one fixed order
  * (recorded by the symbolic analysis), so the factor and the pivots are bitwise the same on any
- * number of threads. Solve splits its right-hand sides over the threads.
+ * number of threads. Solve gives each thread disjoint subtrees for all right-hand sides at once
+ * (each part of the factor is read once, by one thread), then solves the separators above them.
  *
  * Tested by Testing/Core/TestSupernodalLDLT.cxx.
  *
@@ -36,6 +37,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace spectral
@@ -75,8 +77,9 @@ public:
   int NegativePivots() const { return this->Negative; }
 
   /**
-   * X = A^-1 B for the last factored A. The columns of B are split over the threads, at least
-   * 4 columns a thread (one SIMD-wide kernel).
+   * X = A^-1 B for the last factored A, at most 16 columns at a time, each block on all threads
+   * (disjoint subtrees of the elimination tree, SolvePlan), or, where the tree does not allow
+   * it, the columns of B split over the threads, at least 4 a thread (one SIMD-wide kernel).
    */
   DenseMatrix Solve(const Eigen::Ref<const DenseMatrix>& B) const;
 
@@ -85,6 +88,13 @@ public:
 
   /// Number of supernodes.
   int Supernodes() const { return static_cast<int>(this->First.size()) - 1; }
+
+  /// The most columns of one supernode (a volume's top separators have thousands).
+  int WidestSupernode() const;
+
+  /// Threads among which Solve shares each block of right-hand sides by subtrees (SolvePlan;
+  /// 1: it splits the columns instead), as planned by the last Factorize.
+  int SolveThreads() const { return this->Plan.Threads; }
 
 private:
   /// Supernode s in place: columns [First, First + Columns), Rows row indices (its own columns
@@ -119,21 +129,59 @@ private:
     std::unique_ptr<Workspace>& work,
     int& negative);
 
-  /// Solve columns [first, first + count) of B into X.
+  /// Solve columns [first, first + count) of B into X (with SolveRows, `planned` as there).
   void SolveColumns(const Eigen::Ref<const DenseMatrix>& B,
     DenseMatrix& X,
     Eigen::Index first,
-    Eigen::Index count) const;
+    Eigen::Index count,
+    bool planned) const;
 
   /**
    * Solve L D L^T y = b in place for W right-hand sides, with Y row-major (n x W): row k holds
-   * the k-th entries of all W right-hand sides next to each other (defined in the .cxx).
+   * the k-th entries of all W right-hand sides next to each other (defined in the .cxx). On
+   * the threads of the solve plan if `planned` (see SolvePlan), else on the calling thread.
    */
   template<int W>
-  void SolveRows(double* Y) const;
+  void SolveRows(double* Y, bool planned) const;
 
   /// SolveRows for a width known only at run time: 4, 8, 12 or 16.
-  void SolveRowsOfWidth(int width, double* Y) const;
+  void SolveRowsOfWidth(int width, double* Y, bool planned) const;
+
+  /// Consecutive supernodes [first, second).
+  using Range = std::pair<int, int>;
+
+  /**
+   * The forward solve L D z = y of the supernodes of `ranges`, in order. A range is a subtree
+   * (its supernodes consecutive, its root last) when `far` is not null: its updates of rows
+   * outside it (the supernodes above the subtree) go to the same rows of `far` instead of Y.
+   */
+  template<int W>
+  void Forward(const std::vector<Range>& ranges, double* Y, double* far) const;
+
+  /// The backward solve L^T x = z of the supernodes of `ranges`, last range first, each from its
+  /// last supernode down; the rows above them must be solved already.
+  template<int W>
+  void Backward(const std::vector<Range>& ranges, double* Y) const;
+
+  /**
+   * How Solve shares one block of right-hand sides among threads (MakeSolvePlan): each thread
+   * solves whole subtrees of the supernodal elimination tree (Subtrees[t]), reading only its part
+   * of the factor, its updates of the rows above its subtrees kept apart; one thread then adds
+   * those up and solves the supernodes above the subtrees (Top) forward and backward, and the
+   * threads finish their subtrees backward. Threads 1: no plan (a tree that is not postordered,
+   * or one thread); Solve then splits the right-hand sides over the threads instead.
+   */
+  struct SolvePlan
+  {
+    /// The threads it was made for (0: none yet); Threads is 1 when the tree does not allow it.
+    int MadeFor = 0;
+    int Threads = 1;
+    std::vector<std::vector<Range>> Subtrees;
+    std::vector<Range> Top;
+  };
+
+  /// Plan the tree-parallel solve on `threads` threads (Factorize calls it when the count changes).
+  void MakeSolvePlan(int threads);
 
   Eigen::Index Size = 0;
   /// Inverse[i]: the row of P A P^T that row i of A becomes (the inverse of CHOLMOD's ordering).
@@ -168,6 +216,7 @@ private:
   std::vector<double> SubtreeWork;
   /// The permuted lower triangle, re-filled by each Factorize.
   SparseMatrix Permuted;
+  SolvePlan Plan;
   int Negative = 0;
   int Threads = 0;
 };
