@@ -74,13 +74,15 @@ int PaddedWidth(Eigen::Index used)
 }
 
 /**
- * Rows index[k] of `base` (row-major, width W), k < count, minus the sum over j < columns of
- * l[j * stride + k] times row j of y: the forward update of the rows below a supernode.
+ * Rows index[k] - first of `base` (row-major, width W), k < count, minus the sum over j <
+ * columns of l[j * stride + k] times row j of y: the forward update of the rows below a
+ * supernode (first > 0: into a block that holds only the rows from `first` on).
  * Eight rows at a time, so that eight independent sums are under way (one sum alone waits for
  * each multiply-add before the next).
  */
 template<int W>
 void SubtractRows(double* base,
+  int first,
   const int* index,
   int count,
   const double* l,
@@ -109,7 +111,7 @@ void SubtractRows(double* base,
     }
     for (int p = 0; p < 8; ++p)
     {
-      Eigen::Map<Row>(base + static_cast<std::size_t>(index[k + p]) * W) -= a[p];
+      Eigen::Map<Row>(base + static_cast<std::size_t>(index[k + p] - first) * W) -= a[p];
     }
   }
   for (; k < count; ++k)
@@ -120,7 +122,7 @@ void SubtractRows(double* base,
     {
       a += *lj * ConstRowView(y + static_cast<std::size_t>(j) * W);
     }
-    Eigen::Map<Row>(base + static_cast<std::size_t>(index[k]) * W) -= a;
+    Eigen::Map<Row>(base + static_cast<std::size_t>(index[k] - first) * W) -= a;
   }
 }
 
@@ -925,10 +927,17 @@ void SupernodalLDLT::Forward(const std::vector<Range>& ranges, double* Y, double
       // subtree in `far`.
       const int inside = static_cast<int>(
         std::lower_bound(node.RowIndex + c, node.RowIndex + r, outside) - node.RowIndex);
-      SubtractRows<W>(Y, node.RowIndex + c, inside - c, L + c, r, c, row(node.First));
+      SubtractRows<W>(Y, 0, node.RowIndex + c, inside - c, L + c, r, c, row(node.First));
       if (inside < r)
       {
-        SubtractRows<W>(far, node.RowIndex + inside, r - inside, L + inside, r, c, row(node.First));
+        SubtractRows<W>(far,
+          this->Plan.FarFirst,
+          node.RowIndex + inside,
+          r - inside,
+          L + inside,
+          r,
+          c,
+          row(node.First));
       }
       for (int j = 0; j < c; ++j)
       {
@@ -1037,16 +1046,18 @@ void SupernodalLDLT::SolveRows(double* Y, bool planned) const
     this->Backward<W>(all, Y);
     return;
   }
-  // Each thread's updates of the rows above its subtrees, in rows of its own copy of Y's shape
-  // (only those rows are touched, so only their pages are ever allocated).
-  const std::size_t size = static_cast<std::size_t>(this->Size) * W;
+  // Each thread's updates of the rows above its subtrees, in its own block of the rows from
+  // FarFirst on (the first row above the subtrees; only those rows above are touched).
+  const std::size_t offset = static_cast<std::size_t>(plan.FarFirst) * W;
+  const std::size_t size = static_cast<std::size_t>(this->Size) * W - offset;
   std::vector<std::unique_ptr<double[]>> far(static_cast<std::size_t>(plan.Threads));
-  const auto topRows = [this, &plan](const auto& visit)
+  // The entries [begin, end) of Y's rows above the subtrees, range by range.
+  const auto topEntries = [this, &plan](const auto& visit)
   {
     for (const Range& range : plan.Top)
     {
-      visit(this->First[static_cast<std::size_t>(range.first)],
-        this->First[static_cast<std::size_t>(range.second)]);
+      visit(static_cast<std::size_t>(this->First[static_cast<std::size_t>(range.first)]) * W,
+        static_cast<std::size_t>(this->First[static_cast<std::size_t>(range.second)]) * W);
     }
   };
   ForEachRowRange(plan.Threads,
@@ -1057,27 +1068,20 @@ void SupernodalLDLT::SolveRows(double* Y, bool planned) const
       {
         std::unique_ptr<double[]>& mine = far[static_cast<std::size_t>(t)];
         mine.reset(new double[size]);
-        topRows(
-          [&mine](int first, int last)
-          {
-            std::fill(mine.get() + static_cast<std::size_t>(first) * W,
-              mine.get() + static_cast<std::size_t>(last) * W,
-              0.0);
-          });
+        topEntries([&mine, offset](std::size_t begin, std::size_t end)
+          { std::fill(mine.get() + (begin - offset), mine.get() + (end - offset), 0.0); });
         this->Forward<W>(plan.Subtrees[static_cast<std::size_t>(t)], Y, mine.get());
       }
     });
   // In thread order: the sum does not depend on which thread finished first.
   for (const std::unique_ptr<double[]>& mine : far)
   {
-    topRows(
-      [Y, &mine](int first, int last)
+    topEntries(
+      [Y, &mine, offset](std::size_t begin, std::size_t end)
       {
-        for (std::size_t k = static_cast<std::size_t>(first) * W;
-             k < static_cast<std::size_t>(last) * W;
-             ++k)
+        for (std::size_t k = begin; k < end; ++k)
         {
-          Y[k] += mine[k];
+          Y[k] += mine[k - offset];
         }
       });
   }
@@ -1219,6 +1223,8 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
       }
     }
   }
+  plan.FarFirst = plan.Top.empty() ? static_cast<int>(this->Size)
+                                   : this->First[static_cast<std::size_t>(plan.Top.front().first)];
   this->Plan = std::move(plan);
 }
 

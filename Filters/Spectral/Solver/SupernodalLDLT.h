@@ -153,7 +153,8 @@ private:
   /**
    * The forward solve L D z = y of the supernodes of `ranges`, in order. A range is a subtree
    * (its supernodes consecutive, its root last) when `far` is not null: its updates of rows
-   * outside it (the supernodes above the subtree) go to the same rows of `far` instead of Y.
+   * outside it (the supernodes above the subtree) go to `far` instead of Y, which holds the rows
+   * from Plan.FarFirst on.
    */
   template<int W>
   void Forward(const std::vector<Range>& ranges, double* Y, double* far) const;
@@ -178,6 +179,8 @@ private:
     int Threads = 1;
     std::vector<std::vector<Range>> Subtrees;
     std::vector<Range> Top;
+    /// The first row above the subtrees: the threads keep their updates of the rows from it on.
+    int FarFirst = 0;
   };
 
   /// Plan the tree-parallel solve on `threads` threads (Factorize calls it when the count changes).
