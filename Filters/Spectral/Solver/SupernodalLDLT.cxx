@@ -1144,8 +1144,10 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
   }
   // Split the heaviest subtree until the subtrees can be shared out evenly (Geist and Ng's
   // rule): the largest-first assignment of the subtrees to the threads leaves none with more than
-  // SolveImbalance times its share, or the heaviest is a single supernode.
+  // SolveImbalance times its share, or the heaviest is a single supernode. A tree whose
+  // supernodes above the subtrees would hold half of the factor (a chain) gets no plan.
   std::vector<char> top(static_cast<std::size_t>(count), 0);
+  double above = 0.0;
   std::vector<std::pair<double, int>> subtrees;
   std::vector<double> load;
   while (!largest.empty())
@@ -1173,6 +1175,12 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
     }
     largest.pop();
     top[static_cast<std::size_t>(heaviest.second)] = 1;
+    const std::size_t h = static_cast<std::size_t>(heaviest.second);
+    above += static_cast<double>(this->ValueStart[h + 1] - this->ValueStart[h]);
+    if (above > 0.5 * total)
+    {
+      return;
+    }
     for (const int child : below)
     {
       largest.emplace(work[static_cast<std::size_t>(child)], child);
