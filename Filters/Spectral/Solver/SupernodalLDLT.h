@@ -169,8 +169,9 @@ private:
    * solves whole subtrees of the supernodal elimination tree (Subtrees[t]), reading only its part
    * of the factor, its updates of the rows above its subtrees kept apart; one thread then adds
    * those up and solves the supernodes above the subtrees (Top) forward and backward, and the
-   * threads finish their subtrees backward. Threads 1: no plan (a tree that is not postordered,
-   * or one thread); Solve then splits the right-hand sides over the threads instead.
+   * threads finish their subtrees backward. Threads 1: no plan (one thread, a tree that is not
+   * postordered, or one whose supernodes above the subtrees would hold half of the factor); Solve
+   * then splits the right-hand sides over the threads instead.
    */
   struct SolvePlan
   {
