@@ -41,6 +41,12 @@ DenseMatrix RightHandSides(Eigen::Index n, Eigen::Index count)
 /// (indefinite) matrices magnify rounding by their condition.
 constexpr double SolveAgreement = 1e-10;
 
+/// The negative pivots of Eigen's simplicial LDL^T: the reference inertia.
+int NegativePivots(const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>& reference)
+{
+  return static_cast<int>((reference.vectorD().array() < 0.0).count());
+}
+
 /// Two disjoint meshes (several components) of about 6,000 points with the lumped mass.
 struct Pencil
 {
@@ -78,11 +84,7 @@ void SolvesAgree()
       CheckBelow((A * X - B).norm() / B.norm(), 1e-9, name + ": |A X - B| / |B|");
       CheckBelow((X - Y).norm() / Y.norm(), 1e-8, name + ": |X - X_Eigen| / |X_Eigen|");
     }
-    int negative = 0;
-    for (Eigen::Index k = 0; k < reference.vectorD().size(); ++k)
-    {
-      negative += reference.vectorD()[k] < 0.0 ? 1 : 0;
-    }
+    const int negative = NegativePivots(reference);
     Check(factor.NegativePivots() == negative,
       "shift " + std::to_string(sigma) + ": negative pivots " +
         std::to_string(factor.NegativePivots()) + ", Eigen's LDL^T " + std::to_string(negative));
@@ -213,11 +215,7 @@ void WideSupernodes()
     const std::string shift = "ball, shift " + std::to_string(sigma);
     Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> reference(A);
     Check(reference.info() == Eigen::Success, shift + ": Eigen's simplicial LDL^T");
-    int negative = 0;
-    for (Eigen::Index k = 0; k < reference.vectorD().size(); ++k)
-    {
-      negative += reference.vectorD()[k] < 0.0 ? 1 : 0;
-    }
+    const int negative = NegativePivots(reference);
     Check((sigma > 0.0) == (negative > 0), shift + ": " + std::to_string(negative) + " below");
     const DenseMatrix Y = reference.solve(B);
     DenseMatrix X1;

@@ -237,6 +237,19 @@ private:
   std::ptrdiff_t Next;
 };
 
+/// The prefetch of the supernodes [range.first, range.second) of one of the factor's arrays
+/// (`start[s]`: where supernode s begins in it), read forward (distance > 0) or backward.
+template<typename T, typename Offset>
+StreamPrefetch FactorPart(const T* array,
+  const std::vector<Offset>& start,
+  std::pair<int, int> range,
+  std::ptrdiff_t distance)
+{
+  const std::size_t first = static_cast<std::size_t>(start[static_cast<std::size_t>(range.first)]);
+  const std::size_t last = static_cast<std::size_t>(start[static_cast<std::size_t>(range.second)]);
+  return StreamPrefetch(array + first, (last - first) * sizeof(T), distance);
+}
+
 /**
  * The tasks of a factorization on several threads. The elimination tree is cut into subtrees of
  * at most 1 / (SubtreesPerThread x threads) of the work: the largest subtree is split until none
@@ -257,6 +270,36 @@ struct TaskPlan
   int Tasks = 0;
 };
 
+/// The tree given by `parent` (-1 at roots) as the cuts of PlanTasks and MakeSolvePlan start
+/// from it: each node's children, and the roots with the work of their subtrees (subtreeWork).
+struct Forest
+{
+  std::vector<std::vector<int>> Children;
+  /// (work of the subtree, root), the heaviest on top.
+  std::priority_queue<std::pair<double, int>> Largest;
+  /// The work of all roots together.
+  double Total = 0.0;
+};
+
+Forest MakeForest(const std::vector<int>& parent, const std::vector<double>& subtreeWork)
+{
+  Forest forest;
+  forest.Children.resize(parent.size());
+  for (std::size_t s = 0; s < parent.size(); ++s)
+  {
+    if (parent[s] == -1)
+    {
+      forest.Largest.emplace(subtreeWork[s], static_cast<int>(s));
+      forest.Total += subtreeWork[s];
+    }
+    else
+    {
+      forest.Children[static_cast<std::size_t>(parent[s])].push_back(static_cast<int>(s));
+    }
+  }
+  return forest;
+}
+
 /// Cut the tree given by `parent` (-1 at roots; children before parents) into tasks for
 /// `threads` threads, subtreeWork[s] the work of the subtree rooted at s.
 TaskPlan PlanTasks(const std::vector<int>& parent,
@@ -264,21 +307,10 @@ TaskPlan PlanTasks(const std::vector<int>& parent,
   int threads)
 {
   const std::size_t count = parent.size();
-  std::vector<std::vector<int>> children(count);
-  std::priority_queue<std::pair<double, int>> largest;
-  double total = 0.0;
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    if (parent[s] == -1)
-    {
-      largest.emplace(subtreeWork[s], static_cast<int>(s));
-      total += subtreeWork[s];
-    }
-    else
-    {
-      children[static_cast<std::size_t>(parent[s])].push_back(static_cast<int>(s));
-    }
-  }
+  Forest forest = MakeForest(parent, subtreeWork);
+  const std::vector<std::vector<int>>& children = forest.Children;
+  std::priority_queue<std::pair<double, int>>& largest = forest.Largest;
+  const double total = forest.Total;
   TaskPlan plan;
   plan.Pending.assign(count, 0);
   // owner[s]: the task of supernode s, its own index for the roots of tasks.
@@ -892,20 +924,10 @@ void SupernodalLDLT::Forward(const std::vector<Range>& ranges, double* Y, double
     // Rows from `outside` on lie above the subtree: they go to `far`.
     const int outside =
       far ? this->First[static_cast<std::size_t>(range.second)] : static_cast<int>(this->Size);
-    const double* values =
-      this->Values.data() + this->ValueStart[static_cast<std::size_t>(range.first)];
-    const int* indices =
-      this->RowIndex.data() + this->RowStart[static_cast<std::size_t>(range.first)];
-    StreamPrefetch valueStream(values,
-      (this->ValueStart[static_cast<std::size_t>(range.second)] -
-        this->ValueStart[static_cast<std::size_t>(range.first)]) *
-        sizeof(double),
-      PrefetchDistance);
-    StreamPrefetch indexStream(indices,
-      static_cast<std::size_t>(this->RowStart[static_cast<std::size_t>(range.second)] -
-        this->RowStart[static_cast<std::size_t>(range.first)]) *
-        sizeof(int),
-      PrefetchDistance / 4);
+    StreamPrefetch valueStream =
+      FactorPart(this->Values.data(), this->ValueStart, range, PrefetchDistance);
+    StreamPrefetch indexStream =
+      FactorPart(this->RowIndex.data(), this->RowStart, range, PrefetchDistance / 4);
     for (int s = range.first; s < range.second; ++s) // L D y = P b
     {
       const Node node = this->Supernode(s);
@@ -957,20 +979,10 @@ void SupernodalLDLT::Backward(const std::vector<Range>& ranges, double* Y) const
   const auto row = [Y](int k) { return Y + static_cast<std::size_t>(k) * W; };
   for (auto range = ranges.rbegin(); range != ranges.rend(); ++range)
   {
-    const double* values =
-      this->Values.data() + this->ValueStart[static_cast<std::size_t>(range->first)];
-    const int* indices =
-      this->RowIndex.data() + this->RowStart[static_cast<std::size_t>(range->first)];
-    StreamPrefetch valueStream(values,
-      (this->ValueStart[static_cast<std::size_t>(range->second)] -
-        this->ValueStart[static_cast<std::size_t>(range->first)]) *
-        sizeof(double),
-      -PrefetchDistance);
-    StreamPrefetch indexStream(indices,
-      static_cast<std::size_t>(this->RowStart[static_cast<std::size_t>(range->second)] -
-        this->RowStart[static_cast<std::size_t>(range->first)]) *
-        sizeof(int),
-      -PrefetchDistance / 4);
+    StreamPrefetch valueStream =
+      FactorPart(this->Values.data(), this->ValueStart, *range, -PrefetchDistance);
+    StreamPrefetch indexStream =
+      FactorPart(this->RowIndex.data(), this->RowStart, *range, -PrefetchDistance / 4);
     for (int s = range->second - 1; s >= range->first; --s) // L^T x = z
     {
       const Node node = this->Supernode(s);
@@ -1108,12 +1120,9 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
   {
     return;
   }
-  // Work of a subtree: the entries of the factor its solve reads.
+  // Work of a subtree: the entries of the factor its solve reads; size: its supernodes.
   std::vector<double> work(static_cast<std::size_t>(count));
   std::vector<int> size(static_cast<std::size_t>(count), 1);
-  std::vector<std::vector<int>> children(static_cast<std::size_t>(count));
-  std::priority_queue<std::pair<double, int>> largest;
-  double total = 0.0;
   for (int s = 0; s < count; ++s)
   {
     const std::size_t u = static_cast<std::size_t>(s);
@@ -1130,18 +1139,16 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
     {
       return;
     }
-    if (parent == -1)
-    {
-      largest.emplace(work[u], s);
-      total += work[u];
-    }
-    else
+    if (parent != -1)
     {
       work[static_cast<std::size_t>(parent)] += work[u];
       size[static_cast<std::size_t>(parent)] += size[u];
-      children[static_cast<std::size_t>(parent)].push_back(s);
     }
   }
+  Forest forest = MakeForest(this->Parent, work);
+  const std::vector<std::vector<int>>& children = forest.Children;
+  std::priority_queue<std::pair<double, int>>& largest = forest.Largest;
+  const double total = forest.Total;
   // Split the heaviest subtree until the subtrees can be shared out evenly (Geist and Ng's
   // rule): the largest-first assignment of the subtrees to the threads leaves none with more than
   // SolveImbalance times its share, or the heaviest is a single supernode. A tree whose
@@ -1193,17 +1200,15 @@ void SupernodalLDLT::MakeSolvePlan(int threads)
   load.assign(static_cast<std::size_t>(threads), 0.0);
   for (const std::pair<double, int>& subtree : subtrees)
   {
-    // A subtree must be its consecutive supernodes, its root last (a postordered tree).
+    // A subtree must be its consecutive supernodes, its root last (a postordered tree): the
+    // size[root] - 1 supernodes before the root all have their parent at most the root (parents
+    // come after children, so each one's ancestors lead to the root).
     const int root = subtree.second;
     const int first = root - size[static_cast<std::size_t>(root)] + 1;
     for (int s = first; s < root; ++s)
     {
-      int up = s;
-      while (up != -1 && up < root)
-      {
-        up = this->Parent[static_cast<std::size_t>(up)];
-      }
-      if (up != root)
+      const int parent = this->Parent[static_cast<std::size_t>(s)];
+      if (parent == -1 || parent > root)
       {
         return;
       }
