@@ -36,6 +36,8 @@ struct BandRequest
   /// so that a retry holds no more vectors than the first run (the memory estimate counts those,
   /// Solver/Memory.h).
   int SubspacePairs = 0;
+  /// Vectors in each block of the block Lanczos iteration (BandBlockColumns, Bands.h).
+  int BlockColumns = 8;
 };
 
 /// Eigenvalues of one band, sorted ascending; the vectors are the first columns of

@@ -51,6 +51,12 @@ int RetryPairs(int pairs, int attempt)
 }
 
 //------------------------------------------------------------------------------
+int BandBlockColumns(int m, int nev)
+{
+  return nev < SingleBandSize(m) && nev >= 96 ? 12 : 8;
+}
+
+//------------------------------------------------------------------------------
 int PairsPerBand(int m, int bandSize, Eigen::Index n)
 {
   return static_cast<int>(
@@ -445,7 +451,8 @@ bool BandLoop::RunBand(Band& band)
     this->Attempt,
     this->Reference,
     this->MeanGap,
-    this->Nev };
+    this->Nev,
+    BandBlockColumns(this->Count, this->Nev) };
   if (this->Options.Method == LanczosMethod::Spectra)
   {
     band = RunSpectraBand(this->Factor, this->M, request, this->Options, this->Watch, this->Work);

@@ -142,9 +142,8 @@ private:
   const Vector InverseMass;
   Clock::time_point Start;
   const Eigen::Index N;
-  /// Block size: small blocks raise the polynomial degree per application (faster
-  /// convergence); too small blocks make the block solves and products slow. nev / 8 measured
-  /// best for nev ~ 100.
+  /// Block size (request.BlockColumns, chosen by the band policy of Bands.h), at most a quarter
+  /// of the unknowns.
   const Eigen::Index B;
   const Eigen::Index MaxDim;
   /// Pairs a band must return: at least 4 nev / 5.
@@ -193,7 +192,7 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
   , InverseMass((M.Matrix * Vector::Ones(M.Matrix.cols())).cwiseInverse())
   , Start(Clock::now())
   , N(M.Matrix.rows())
-  , B(std::min<Eigen::Index>(std::max(8, std::min(16, request.Pairs / 8)), this->N / 4 + 1))
+  , B(std::min<Eigen::Index>(request.BlockColumns, this->N / 4 + 1))
   , MaxDim(SubspaceSize(this->N, this->B, request.Pairs, request.SubspacePairs))
   , Wanted(std::max(1, (4 * request.Pairs) / 5))
   , Generator(20080415u + 7919u * static_cast<unsigned>(request.Attempt))
