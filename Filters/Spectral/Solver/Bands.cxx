@@ -51,9 +51,9 @@ int RetryPairs(int pairs, int attempt)
 }
 
 //------------------------------------------------------------------------------
-int BandBlockColumns(int m, int nev)
+int BandReturnPairs(int m, int nev, int pairs)
 {
-  return nev < SingleBandSize(m) && nev >= 96 ? 12 : 8;
+  return std::max(1, nev >= SingleBandSize(m) ? (4 * pairs) / 5 : (9 * pairs) / 10);
 }
 
 //------------------------------------------------------------------------------
@@ -452,7 +452,8 @@ bool BandLoop::RunBand(Band& band)
     this->Reference,
     this->MeanGap,
     this->Nev,
-    BandBlockColumns(this->Count, this->Nev) };
+    BandBlockColumns,
+    BandReturnPairs(this->Count, this->Nev, RetryPairs(this->Nev, this->Attempt)) };
   if (this->Options.Method == LanczosMethod::Spectra)
   {
     band = RunSpectraBand(this->Factor, this->M, request, this->Options, this->Watch, this->Work);

@@ -15,16 +15,16 @@
  * SingleBandSize(m) = m + m / 4 + 10 pairs while that is at most 160 (m <= 120), else bands of
  * 100 pairs. A band size set by hand is used as is (but never above SingleBandSize(m)).
  *
- * Block size (BandBlockColumns, BandRequest::BlockColumns). A band's block Lanczos iteration
- * (BlockLanczos.h) applies the operator to blocks of 8 vectors when the band asks for all the
- * pairs (the single band) or for fewer than 96, and to blocks of 12 in bands of 96 pairs or
- * more. Smaller blocks raise the degree of the Krylov polynomial per application: the single
- * band of 135 pairs at m = 100 converges in one fill of its 421-vector basis with blocks of 8
- * (416 applications, no restart) where blocks of 16 took 576 applications and a restart, 19 to
- * 25% less time on the 10K- and 100K-point tori. In bands of 100, blocks of 8 made each band
- * return fewer pairs at m = 500 (8 bands instead of 6 on the 10K and 23K tori, 10% slower) and
- * were faster elsewhere (23K x 200, 50K x 300, 100K x 500, a volume): those bands keep 12
- * (bench/README, "Block size").
+ * Block size and return (BandBlockColumns, BandReturnPairs; BandRequest::BlockColumns and
+ * ReturnPairs). A band's block Lanczos iteration (BlockLanczos.h) applies the operator to
+ * blocks of 8 vectors, and returns once 4/5 of its pairs have converged in the single band, 9/10
+ * in bands of 100. Small blocks raise the degree of the Krylov polynomial per application: the
+ * single band of 135 pairs at m = 100 converges in one fill of its 421-vector basis (416
+ * applications, no restart) where blocks of 16 took 576 applications and a restart, 19 to 35%
+ * less time on the 10K- and 100K-point tori. A band of 100 with blocks of 8 reaches 4/5 of its
+ * pairs so early that it returns too few (8 bands instead of 6 at m = 500); waiting for 9/10
+ * took fewer applications than blocks of 12 at 4/5 in every case measured (6 bands at m = 500),
+ * while in the single band it would cost a restart (bench/README, "Block size").
  *
  * Shifts. The first shift is -1 / area (below the first non-zero eigenvalue of most shapes); each
  * later shift is placed from the eigenvalue density of the band before (Weyl's law), 3/8 of a
@@ -89,9 +89,13 @@ struct MassMatrix;
 /// nev, the pairs each band asks for: min(EffectiveBandSize(m, bandSize), SingleBandSize(m), n/2).
 int PairsPerBand(int m, int bandSize, Eigen::Index n);
 
-/// The vectors in each block of a band of nev pairs when the solve asks for m: 12 for bands
-/// of 96 to SingleBandSize(m) - 1 pairs, else 8 (the block policy above).
-int BandBlockColumns(int m, int nev);
+/// The vectors in each block of a band's block Lanczos iteration (the block policy above).
+constexpr int BandBlockColumns = 8;
+
+/// The converged pairs a band waits for before it returns, for a solve of m pairs in bands of
+/// nev (PairsPerBand) and an attempt that asks for `pairs` (RetryPairs): 4/5 of them in the
+/// single band (nev = SingleBandSize(m)), 9/10 in the others (the block policy above).
+int BandReturnPairs(int m, int nev, int pairs);
 
 /// The pairs a band of `pairs` asks for at retry `attempt` (0: the first run): 2 pairs /
 /// (attempt + 2), at least 1, in the subspace of the first run (BandRequest::SubspacePairs).

@@ -146,7 +146,7 @@ private:
   /// of the unknowns.
   const Eigen::Index B;
   const Eigen::Index MaxDim;
-  /// Pairs a band must return: at least 4 nev / 5.
+  /// Pairs a band must return (request.ReturnPairs, the band policy of Bands.h).
   const int Wanted;
   std::mt19937 Generator;
   Eigen::Block<DenseMatrix, Eigen::Dynamic, Eigen::Dynamic, true> V;
@@ -192,9 +192,9 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
   , InverseMass((M.Matrix * Vector::Ones(M.Matrix.cols())).cwiseInverse())
   , Start(Clock::now())
   , N(M.Matrix.rows())
-  , B(std::min<Eigen::Index>(request.BlockColumns, this->N / 4 + 1))
+  , B(std::max<Eigen::Index>(1, std::min<Eigen::Index>(request.BlockColumns, this->N / 4 + 1)))
   , MaxDim(SubspaceSize(this->N, this->B, request.Pairs, request.SubspacePairs))
-  , Wanted(std::max(1, (4 * request.Pairs) / 5))
+  , Wanted(std::max(1, std::min(request.ReturnPairs, request.Pairs)))
   , Generator(20080415u + 7919u * static_cast<unsigned>(request.Attempt))
   , V(Workspace::Columns(work.Basis, this->N, this->MaxDim + this->B))
   , T(DenseMatrix::Zero(this->MaxDim + this->B, this->MaxDim + this->B))
