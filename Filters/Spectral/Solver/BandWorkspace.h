@@ -36,8 +36,6 @@ struct BandRequest
   /// so that a retry holds no more vectors than the first run (the memory estimate counts those,
   /// Solver/Memory.h).
   int SubspacePairs = 0;
-  /// Vectors in each block of the block Lanczos iteration (the loop's BandBlockColumns, Bands.h).
-  int BlockColumns = 0;
   /// The converged pairs the band waits for before it returns (the loop's BandReturnPairs,
   /// Bands.h).
   int ReturnPairs = 0;

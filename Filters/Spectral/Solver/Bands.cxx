@@ -446,14 +446,14 @@ bool BandLoop::FactorAtShift()
 bool BandLoop::RunBand(Band& band)
 {
   this->Start = Clock::now();
+  const int pairs = RetryPairs(this->Nev, this->Attempt);
   const BandRequest request{ this->Sigma,
-    RetryPairs(this->Nev, this->Attempt),
+    pairs,
     this->Attempt,
     this->Reference,
     this->MeanGap,
     this->Nev,
-    BandBlockColumns,
-    BandReturnPairs(this->Count, this->Nev, RetryPairs(this->Nev, this->Attempt)) };
+    BandReturnPairs(this->Count, this->Nev, pairs) };
   if (this->Options.Method == LanczosMethod::Spectra)
   {
     band = RunSpectraBand(this->Factor, this->M, request, this->Options, this->Watch, this->Work);

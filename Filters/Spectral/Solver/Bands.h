@@ -15,16 +15,16 @@
  * SingleBandSize(m) = m + m / 4 + 10 pairs while that is at most 160 (m <= 120), else bands of
  * 100 pairs. A band size set by hand is used as is (but never above SingleBandSize(m)).
  *
- * Block size and return (BandBlockColumns, BandReturnPairs; BandRequest::BlockColumns and
- * ReturnPairs). A band's block Lanczos iteration (BlockLanczos.h) applies the operator to
- * blocks of 8 vectors, and returns once 4/5 of its pairs have converged in the single band, 9/10
- * in bands of 100. Small blocks raise the degree of the Krylov polynomial per application: the
- * single band of 135 pairs at m = 100 converges in one fill of its 421-vector basis (416
- * applications, no restart) where blocks of 16 took 576 applications and a restart, 19 to 35%
- * less time on the 10K- and 100K-point tori. A band of 100 with blocks of 8 reaches 4/5 of its
- * pairs so early that it returns too few (8 bands instead of 6 at m = 500); waiting for 9/10
- * took fewer applications than blocks of 12 at 4/5 in every case measured (6 bands at m = 500),
- * while in the single band it would cost a restart (bench/README, "Block size").
+ * Block size and return (BandBlockColumns, BandReturnPairs; BandRequest::ReturnPairs). A band's
+ * block Lanczos iteration (BlockLanczos.h) applies the operator to blocks of 8 vectors, and returns
+ * once 4/5 of its pairs have converged in the single band, 9/10 in bands of 100. Small blocks raise
+ * the degree of the Krylov polynomial per application: the single band of 135 pairs at m = 100
+ * converges in one fill of its 421-vector basis (416 applications, no restart) where blocks of 16
+ * took 576 applications and a restart, 19 to 35% less time on the 10K- and 100K-point tori. A band
+ * of 100 with blocks of 8 reaches 4/5 of its pairs so early that it returns too few (8 bands
+ * instead of 6 at m = 500); waiting for 9/10 took fewer applications than blocks of 12 at 4/5 in
+ * every case measured (6 bands at m = 500), while in the single band it would cost a restart
+ * (bench/README, "Block size").
  *
  * Shifts. The first shift is -1 / area (below the first non-zero eigenvalue of most shapes); each
  * later shift is placed from the eigenvalue density of the band before (Weyl's law), 3/8 of a

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Solver/BlockLanczos.h"
 #include "Common/Eigenvalues.h"
+#include "Solver/Bands.h"
 #include "Solver/BlockProducts.h"
 #include "Solver/Diagnostics.h"
 #include "Solver/LanczosKernels.h"
@@ -142,8 +143,8 @@ private:
   const Vector InverseMass;
   Clock::time_point Start;
   const Eigen::Index N;
-  /// Block size (request.BlockColumns, chosen by the band policy of Bands.h), at most a quarter
-  /// of the unknowns.
+  /// Block size (BandBlockColumns, the band policy of Bands.h), at most a quarter of the
+  /// unknowns.
   const Eigen::Index B;
   const Eigen::Index MaxDim;
   /// Pairs a band must return (request.ReturnPairs, the band policy of Bands.h).
@@ -192,9 +193,9 @@ BlockLanczosBand::BlockLanczosBand(const ShiftedFactor& factor,
   , InverseMass((M.Matrix * Vector::Ones(M.Matrix.cols())).cwiseInverse())
   , Start(Clock::now())
   , N(M.Matrix.rows())
-  , B(std::max<Eigen::Index>(1, std::min<Eigen::Index>(request.BlockColumns, this->N / 4 + 1)))
+  , B(std::min<Eigen::Index>(BandBlockColumns, this->N / 4 + 1))
   , MaxDim(SubspaceSize(this->N, this->B, request.Pairs, request.SubspacePairs))
-  , Wanted(std::max(1, std::min(request.ReturnPairs, request.Pairs)))
+  , Wanted(std::max(1, request.ReturnPairs))
   , Generator(20080415u + 7919u * static_cast<unsigned>(request.Attempt))
   , V(Workspace::Columns(work.Basis, this->N, this->MaxDim + this->B))
   , T(DenseMatrix::Zero(this->MaxDim + this->B, this->MaxDim + this->B))
