@@ -17,6 +17,7 @@ set(spectral_core_sources
   Common/BasisFile.cxx
   Streaming.cxx
   Common/Seams.cxx
+  Common/Threads.cxx
   Operators/Laplacian.cxx
   Operators/Operators.cxx
   Operators/IntrinsicDelaunay.cxx

@@ -13,10 +13,11 @@
 #include <atomic>
 #include <initializer_list>
 #include <limits>
-#include <stdexcept>
-#include <vector>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 using namespace spectral;
 using namespace spectral::testing;
@@ -564,6 +565,104 @@ void ThreadsMatchOneThread()
       });
     },
     "an exception on a helper thread reaches the caller");
+  // The helper threads kept between calls (RunOnHelpers): calls in a row with more and fewer
+  // ranges, calls from within a range (nested) and from several threads at once must each
+  // cover their rows exactly once and return only when every range has finished.
+  const auto coverage = [](Eigen::Index n,
+                          int parts,
+                          std::vector<std::atomic<int>>& seen,
+                          std::size_t offset,
+                          bool nested)
+  {
+    ForEachRowRange(n,
+      parts,
+      [&seen, offset, nested](int part, Eigen::Index first, Eigen::Index count)
+      {
+        if (nested && count > 0)
+        {
+          // Each range splits itself again, into part + 1 ranges.
+          ForEachRowRange(count,
+            part + 1,
+            [&seen, offset, first](int, Eigen::Index innerFirst, Eigen::Index innerCount)
+            {
+              for (Eigen::Index i = innerFirst; i < innerFirst + innerCount; ++i)
+              {
+                ++seen[offset + static_cast<std::size_t>(first + i)];
+              }
+            });
+          return;
+        }
+        for (Eigen::Index i = first; i < first + count; ++i)
+        {
+          ++seen[offset + static_cast<std::size_t>(i)];
+        }
+      });
+  };
+  const auto exactlyOnce = [](const std::vector<std::atomic<int>>& seen, int times)
+  {
+    for (const auto& count : seen)
+    {
+      if (count != times)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  {
+    std::vector<std::atomic<int>> seen(1000);
+    for (int call = 0; call < 200; ++call)
+    {
+      coverage(1000, 1 + call % 8, seen, 0, call % 3 == 0);
+    }
+    Check(exactlyOnce(seen, 200),
+      "200 calls in a row, 1 to 8 ranges, some nested: each row once a call");
+  }
+  {
+    // Four threads, each with its own rows, calling at the same time.
+    std::vector<std::atomic<int>> seen(4 * 500);
+    std::vector<std::thread> callers;
+    for (int caller = 0; caller < 4; ++caller)
+    {
+      callers.emplace_back(
+        [&coverage, &seen, caller]()
+        {
+          for (int call = 0; call < 100; ++call)
+          {
+            coverage(500,
+              2 + (call + caller) % 4,
+              seen,
+              static_cast<std::size_t>(caller) * 500,
+              call % 5 == 0);
+          }
+        });
+    }
+    for (std::thread& caller : callers)
+    {
+      caller.join();
+    }
+    Check(
+      exactlyOnce(seen, 100), "4 threads calling at once, 100 calls each: each row once a call");
+  }
+  CheckThrows<std::runtime_error>(
+    []()
+    {
+      ForEachRowRange(100,
+        3,
+        [](int part, Eigen::Index, Eigen::Index)
+        {
+          if (part == 2)
+          {
+            throw std::runtime_error("range 2 failed");
+          }
+        });
+    },
+    "an exception on a kept helper thread reaches the caller");
+  {
+    std::vector<std::atomic<int>> seen(10);
+    coverage(10, 3, seen, 0, false);
+    Check(exactlyOnce(seen, 1), "the helpers work again after an exception");
+  }
   Check(TransformThreads(100, 10) == 1, "automatic: 1 thread for a small product");
   Check(TransformThreads(5, 1000, 8) == 5, "at most one thread a row");
   Check(TransformThreads(100000, 4, 8) == 8, "8 threads asked: 8");

@@ -15,13 +15,16 @@
  *
  * They run on plain std::threads rather than on vtkSMPTools because the core does not know VTK,
  * and because ParaView as packaged by Debian selects vtkSMPTools' Sequential backend, which
- * would run them on one thread.
+ * would run them on one thread. The threads are kept between calls (RunOnHelpers, Threads.cxx):
+ * the 10,000-point torus of the benchmark with 100 harmonics makes about 600 parallel calls,
+ * and starting a thread for each took a tenth of its time.
  *
  * Each range of ForEachRowRange is a contiguous block of rows; the work for range p must only
  * write data that belongs to range p (its own rows of an output, or its own partial sum), so the
  * ranges need no locking. Nothing is copied: the work reads the shared inputs in place.
  *
- * Tested by Testing/Core/TestTransfer.cxx (ThreadsMatchOneThread).
+ * Tested by Testing/Core/TestTransfer.cxx (ThreadsMatchOneThread: nested and concurrent calls
+ * too).
  */
 #ifndef spectral_Threads_h
 #define spectral_Threads_h
@@ -31,6 +34,7 @@
 #include <algorithm>
 #include <climits>
 #include <exception>
+#include <functional>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -118,10 +122,26 @@ inline int TransformThreads(Eigen::Index n, Eigen::Index m, int requested = 0)
   return static_cast<int>(std::max<Eigen::Index>(1, std::min<Eigen::Index>(threads, n)));
 }
 
+namespace detail
+{
+/**
+ * Call run(1), ..., run(helpers) on the core's helper threads and run(0) on the calling thread;
+ * return when all have returned. The helpers wait between calls (starting a thread and joining
+ * it costs about 30 microseconds, and a band of the eigensolver makes a dozen parallel calls
+ * per block of 8 vectors, some of a few hundred microseconds). One caller uses them at a time.
+ * \param run Must not throw.
+ *
+eturn false, having run nothing, when the helpers are in use (a call from another thread,
+ *         or from within run), cannot be started, or belong to the parent of a forked process.
+ */
+bool RunOnHelpers(int helpers, const std::function<void(int)>& run);
+} // namespace detail
+
 /**
  * Split the rows [0, n) into `parts` contiguous ranges of nearly equal size and call
- * work(part, first, count) for each, ranges 1, 2, ... on new threads and range 0 on the calling
- * thread; return when all are done.
+ * work(part, first, count) for each, ranges 1, 2, ... on other threads (the helpers of
+ * RunOnHelpers, or new threads where those are in use) and range 0 on the calling thread;
+ * return when all are done.
  * \param n Number of rows, >= 0.
  * \param parts Number of ranges, >= 1 (1 runs work(0, 0, n) on the calling thread only).
  * \param work Callable (int part, Eigen::Index first, Eigen::Index count); it must write only
@@ -146,23 +166,30 @@ void ForEachRowRange(Eigen::Index n, int parts, const Work& work)
       errors[static_cast<std::size_t>(part)] = std::current_exception();
     }
   };
-  std::vector<std::thread> helpers;
-  helpers.reserve(static_cast<std::size_t>(parts - 1));
-  for (int part = 1; part < parts; ++part)
+  if (parts == 1)
   {
-    try
-    {
-      helpers.emplace_back(run, part);
-    }
-    catch (const std::system_error&)
-    {
-      run(part); // no thread to be had: this range on the calling thread
-    }
+    run(0);
   }
-  run(0);
-  for (std::thread& helper : helpers)
+  else if (!detail::RunOnHelpers(parts - 1, run))
   {
-    helper.join();
+    std::vector<std::thread> helpers;
+    helpers.reserve(static_cast<std::size_t>(parts - 1));
+    for (int part = 1; part < parts; ++part)
+    {
+      try
+      {
+        helpers.emplace_back(run, part);
+      }
+      catch (const std::system_error&)
+      {
+        run(part); // no thread to be had: this range on the calling thread
+      }
+    }
+    run(0);
+    for (std::thread& helper : helpers)
+    {
+      helper.join();
+    }
   }
   for (const std::exception_ptr& error : errors)
   {
