@@ -7,6 +7,7 @@
 #include "Meshes.h"
 #include "Operators/Operators.h"
 #include "Solver/EigenSolver.h"
+#include "Solver/Verification.h"
 
 #include <Eigen/Dense>
 
@@ -14,6 +15,7 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -780,6 +782,92 @@ void InvalidSizes()
   CheckPairs(p, all, "m = n = " + std::to_string(n));
 }
 
+//------------------------------------------------------------------------------
+void FiguresMatchDefinition()
+{
+  // The residual figures of every pair (RelativeResiduals, BackwardErrors: Verification.cxx,
+  // which forms the products of 8 pairs in one pass over each matrix, on one or two threads)
+  // against their definitions computed column by column with Eigen's sparse products: random
+  // symmetric L of mixed signs, a diagonal and a full sparse M, compressed and not, 13 pairs
+  // (one thread, a partial block) and 70 (two threads where there are two cores).
+  const int n = 9001;
+  std::mt19937 generator(12u);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::uniform_int_distribution<int> column(0, n - 1);
+  std::vector<Eigen::Triplet<double>> l;
+  std::vector<Eigen::Triplet<double>> consistent;
+  for (int i = 0; i < n; ++i)
+  {
+    l.emplace_back(i, i, 4.0 + uniform(generator));
+    consistent.emplace_back(i, i, 2.0 + uniform(generator));
+    for (int e = 0; e < 3; ++e)
+    {
+      const int j = column(generator);
+      const double w = uniform(generator);
+      l.emplace_back(i, j, w);
+      l.emplace_back(j, i, w);
+      const double v = 0.1 * std::abs(uniform(generator));
+      consistent.emplace_back(i, j, v);
+      consistent.emplace_back(j, i, v);
+    }
+  }
+  SparseMatrix L(n, n);
+  L.setFromTriplets(l.begin(), l.end());
+  SparseMatrix full(n, n);
+  full.setFromTriplets(consistent.begin(), consistent.end());
+  SparseMatrix diagonal(n, n);
+  diagonal.setIdentity();
+  diagonal *= 0.5;
+  SparseMatrix uncompressed = L;
+  uncompressed.uncompress();
+  for (const int m : { 13, 70 })
+  {
+    DenseMatrix Phi(n, m);
+    for (Eigen::Index k = 0; k < Phi.size(); ++k)
+    {
+      Phi.data()[k] = uniform(generator);
+    }
+    const Vector lambda = Vector::LinSpaced(m, -0.5, 3.0);
+    for (const SparseMatrix* M : { &diagonal, &full })
+    {
+      const Vector rowSums = *M * Vector::Ones(n);
+      const double reference = ResidualReference(lambda, L.diagonal().sum() / rowSums.sum());
+      const SparseMatrix absL = L.cwiseAbs();
+      const SparseMatrix absM = M->cwiseAbs();
+      Vector relative(m);
+      Vector backward(m);
+      for (int k = 0; k < m; ++k)
+      {
+        const Vector r = L * Phi.col(k) - lambda[k] * (*M * Phi.col(k));
+        relative[k] = std::sqrt(r.cwiseAbs2().cwiseQuotient(rowSums).sum()) /
+          std::max(std::abs(lambda[k]), reference);
+        const Vector scale =
+          absL * Phi.col(k).cwiseAbs() + std::abs(lambda[k]) * (absM * Phi.col(k).cwiseAbs());
+        const double floor = detail::BackwardErrorFloor * scale.maxCoeff();
+        backward[k] = r.cwiseAbs().cwiseQuotient(scale.cwiseMax(floor)).maxCoeff();
+      }
+      const std::string what =
+        std::to_string(m) + " pairs, " + (M == &diagonal ? "diagonal" : "full") + " mass";
+      for (const SparseMatrix* stiffness : { &L, &uncompressed })
+      {
+        const std::string of = what + (stiffness == &L ? "" : ", uncompressed L");
+        CheckBelow((RelativeResiduals(*stiffness, *M, lambda, Phi) - relative)
+                     .cwiseQuotient(relative)
+                     .cwiseAbs()
+                     .maxCoeff(),
+          1e-12,
+          "relative residuals, " + of);
+        CheckBelow((BackwardErrors(*stiffness, *M, lambda, Phi) - backward)
+                     .cwiseQuotient(backward)
+                     .cwiseAbs()
+                     .maxCoeff(),
+          1e-12,
+          "backward errors, " + of);
+      }
+    }
+  }
+}
+
 const Case Cases[] = {
   { "SphereSpectrum", SphereSpectrum },
   { "SphereConsistentMass", SphereConsistentMass },
@@ -796,6 +884,7 @@ const Case Cases[] = {
   { "Cancellation", Cancellation },
   { "NearCoincidentDebris", NearCoincidentDebris },
   { "InvalidSizes", InvalidSizes },
+  { "FiguresMatchDefinition", FiguresMatchDefinition },
   { "ExactZeroModes", ExactZeroModes },
   { "ZeroModeOfDebris", ZeroModeOfDebris },
 };
