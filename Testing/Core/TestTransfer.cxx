@@ -11,6 +11,9 @@
 #include "Filtering/Transfer.h"
 
 #include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <initializer_list>
 #include <limits>
 #include <random>
@@ -18,6 +21,9 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace spectral;
 using namespace spectral::testing;
@@ -662,6 +668,37 @@ void ThreadsMatchOneThread()
     std::vector<std::atomic<int>> seen(10);
     coverage(10, 3, seen, 0, false);
     Check(exactlyOnce(seen, 1), "the helpers work again after an exception");
+  }
+  {
+    // A child of fork() (a Python multiprocessing worker, say) has none of the parent's helper
+    // threads: its calls start their own, and it exits without waiting for the parent's.
+    const pid_t child = fork();
+    if (child == 0)
+    {
+      std::vector<std::atomic<int>> seen(1000);
+      for (int call = 0; call < 20; ++call)
+      {
+        coverage(1000, 2 + call % 3, seen, 0, call % 4 == 0);
+      }
+      std::exit(exactlyOnce(seen, 20) ? 0 : 1); // static destructors run: the helpers' too
+    }
+    int status = -1;
+    bool ended = false;
+    for (int wait = 0; wait < 1200 && !ended; ++wait)
+    {
+      ended = child > 0 && waitpid(child, &status, WNOHANG) == child;
+      if (!ended)
+      {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    }
+    if (!ended && child > 0)
+    {
+      kill(child, SIGKILL);
+      waitpid(child, &status, 0);
+    }
+    Check(ended && WIFEXITED(status) && WEXITSTATUS(status) == 0,
+      "a forked child: its calls cover their rows, and it exits within a minute");
   }
   Check(TransformThreads(100, 10) == 1, "automatic: 1 thread for a small product");
   Check(TransformThreads(5, 1000, 8) == 5, "at most one thread a row");

@@ -17,15 +17,30 @@ namespace
 /**
  * The helper threads of ForEachRowRange, kept waiting between its calls. One caller at a time
  * uses them (the others, concurrent or nested, start threads of their own); they are started on
- * first use, as many as the largest call asked for, and joined when the program ends.
+ * first use, as many as the largest call asked for, and joined when the program ends (not in a
+ * child of fork(), which has none of them).
  */
 class HelperPool
 {
 public:
   static HelperPool& Instance()
   {
-    static HelperPool pool;
-    return pool;
+    // Deleted at exit by the process that made it. A child of fork() leaves it alone: the
+    // threads it would join, and those its condition variables count as waiting, are the
+    // parent's (destroying them hung the child's exit).
+    struct Owner
+    {
+      HelperPool* Pool = new HelperPool;
+      ~Owner()
+      {
+        if (getpid() == this->Pool->Process)
+        {
+          delete this->Pool;
+        }
+      }
+    };
+    static Owner owner;
+    return *owner.Pool;
   }
 
   HelperPool(const HelperPool&) = delete;
