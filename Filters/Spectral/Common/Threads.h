@@ -130,8 +130,7 @@ namespace detail
  * it costs about 30 microseconds, and a band of the eigensolver makes a dozen parallel calls
  * per block of 8 vectors, some of a few hundred microseconds). One caller uses them at a time.
  * \param run Must not throw.
- *
-eturn false, having run nothing, when the helpers are in use (a call from another thread,
+ * \return false, having run nothing, when the helpers are in use (a call from another thread,
  *         or from within run), cannot be started, or belong to the parent of a forked process.
  */
 bool RunOnHelpers(int helpers, const std::function<void(int)>& run);
@@ -170,7 +169,7 @@ void ForEachRowRange(Eigen::Index n, int parts, const Work& work)
   {
     run(0);
   }
-  else if (!detail::RunOnHelpers(parts - 1, run))
+  else if (!detail::RunOnHelpers(parts - 1, std::ref(run))) // a reference: no copy to the heap
   {
     std::vector<std::thread> helpers;
     helpers.reserve(static_cast<std::size_t>(parts - 1));

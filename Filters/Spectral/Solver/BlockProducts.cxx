@@ -11,13 +11,10 @@ namespace spectral
 {
 namespace
 {
-/// One row of the narrow block, padded to Width columns: one or two SIMD registers (AVX-512), or
-/// a few (AVX2); Eigen picks the instructions of the target.
-template<int Width>
-using Row = Eigen::Matrix<double, Width, 1>;
-
-template<int Width>
-using Rows = std::vector<Row<Width>, Eigen::aligned_allocator<Row<Width>>>;
+using detail::CopyIn;
+using detail::CopyOut;
+using detail::Row;
+using detail::Rows;
 
 /**
  * Rows per chunk. A chunk of the narrow block (2048 x 16 doubles at most, 256 KB) stays in the
@@ -56,35 +53,6 @@ constexpr int Group = 8;
 #else
 constexpr int Group = 3;
 #endif
-
-/// The rows of `source` into the first source.cols() entries of rows[0], rows[1], ... (the
-/// entries beyond them are left as they are).
-template<int Width>
-void CopyIn(const Eigen::Ref<const DenseMatrix>& source, Row<Width>* rows)
-{
-  for (Eigen::Index j = 0; j < source.cols(); ++j)
-  {
-    const double* column = source.data() + j * source.outerStride();
-    for (Eigen::Index i = 0; i < source.rows(); ++i)
-    {
-      rows[i][j] = column[i];
-    }
-  }
-}
-
-/// The first target.cols() entries of rows[0], rows[1], ... into the rows of `target`.
-template<int Width>
-void CopyOut(const Row<Width>* rows, Eigen::Ref<DenseMatrix> target)
-{
-  for (Eigen::Index j = 0; j < target.cols(); ++j)
-  {
-    double* column = target.data() + j * target.outerStride();
-    for (Eigen::Index i = 0; i < target.rows(); ++i)
-    {
-      column[i] = rows[i][j];
-    }
-  }
-}
 
 /// out[q] += sum_i B(i, q) rows[i] for the G columns of B starting at `column` (stride ldb), over h
 /// rows.

@@ -30,8 +30,51 @@
 
 #include "Common/Mesh.h"
 
+#include <vector>
+
 namespace spectral
 {
+namespace detail
+{
+/// One row of a narrow block, padded to Width columns: one or two SIMD registers (AVX-512), or
+/// a few (AVX2); Eigen picks the instructions of the target. The kernels below, and the final
+/// check's products (Verification.cxx), keep a few columns row by row in this layout.
+template<int Width>
+using Row = Eigen::Matrix<double, Width, 1>;
+
+template<int Width>
+using Rows = std::vector<Row<Width>, Eigen::aligned_allocator<Row<Width>>>;
+
+/// The rows of `source` into the first source.cols() entries of rows[0], rows[1], ... (the
+/// entries beyond them are left as they are).
+template<int Width>
+void CopyIn(const Eigen::Ref<const DenseMatrix>& source, Row<Width>* rows)
+{
+  for (Eigen::Index j = 0; j < source.cols(); ++j)
+  {
+    const double* column = source.data() + j * source.outerStride();
+    for (Eigen::Index i = 0; i < source.rows(); ++i)
+    {
+      rows[i][j] = column[i];
+    }
+  }
+}
+
+/// The first target.cols() entries of rows[0], rows[1], ... into the rows of `target`.
+template<int Width>
+void CopyOut(const Row<Width>* rows, Eigen::Ref<DenseMatrix> target)
+{
+  for (Eigen::Index j = 0; j < target.cols(); ++j)
+  {
+    double* column = target.data() + j * target.outerStride();
+    for (Eigen::Index i = 0; i < target.rows(); ++i)
+    {
+      column[i] = rows[i][j];
+    }
+  }
+}
+} // namespace detail
+
 /// Widest A the kernels take.
 constexpr int NarrowBlockWidth = 16;
 

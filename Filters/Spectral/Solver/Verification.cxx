@@ -38,9 +38,10 @@ namespace detail
 {
 namespace
 {
-/// Eight columns of a block, one row of them: one AVX-512 register, two AVX2 ones.
-using BlockRow = Eigen::Matrix<double, 8, 1>;
-using BlockRows = std::vector<BlockRow, Eigen::aligned_allocator<BlockRow>>;
+/// Eight columns of a block, one row of them (BlockProducts.h): one AVX-512 register.
+constexpr int BlockWidth = 8;
+using BlockRow = Row<BlockWidth>;
+using BlockRows = Rows<BlockWidth>;
 
 /**
  * out[i] += sum_k A(i, k) x[k] and, with absOut, absOut[i] += sum_k |A(i, k)| |x[k]|, for the
@@ -223,7 +224,7 @@ PairFigures ResidualFigures(const SparseMatrix& L,
   PairFigures out;
   out.Relative.resize(lambda.size());
   out.Backward.resize(backward ? lambda.size() : 0);
-  constexpr Eigen::Index block = 8;
+  constexpr Eigen::Index block = BlockWidth;
   const int parts = static_cast<int>(std::max<Eigen::Index>(1,
     std::min<Eigen::Index>(BlockThreads(Phi.rows()),
       std::max<Eigen::Index>(lambda.size() / 128, std::min<Eigen::Index>(2, lambda.size() / 32)))));
@@ -239,20 +240,13 @@ PairFigures ResidualFigures(const SparseMatrix& L,
       BlockRows absMX(backward ? n : 0);
       // Column-major n x 8 views of blocks no longer needed once the products are done: the
       // residuals in X's storage, |L| |x| and |M| |x| in LX's and MX's.
-      const auto columnsOf = [n](BlockRows& rows)
-      { return Eigen::Map<DenseMatrix>(rows.data()->data(), static_cast<Eigen::Index>(n), block); };
+      const auto columnsOf = [n](BlockRows& rows, Eigen::Index count)
+      { return Eigen::Map<DenseMatrix>(rows.data()->data(), static_cast<Eigen::Index>(n), count); };
       for (Eigen::Index first = begin; first < begin + columns; first += block)
       {
         const Eigen::Index count = std::min(block, begin + columns - first);
         std::fill(X.begin(), X.end(), BlockRow::Zero());
-        for (Eigen::Index j = 0; j < count; ++j)
-        {
-          const double* column = Phi.col(first + j).data();
-          for (std::size_t i = 0; i < n; ++i)
-          {
-            X[i][j] = column[i];
-          }
-        }
+        CopyIn<BlockWidth>(Phi.middleCols(first, count), X.data());
         std::fill(LX.begin(), LX.end(), BlockRow::Zero());
         std::fill(MX.begin(), MX.end(), BlockRow::Zero());
         std::fill(absLX.begin(), absLX.end(), BlockRow::Zero());
@@ -261,27 +255,18 @@ PairFigures ResidualFigures(const SparseMatrix& L,
         AddSparseProduct(B, X, MX, backward ? &absMX : nullptr);
         BlockRow lanes = BlockRow::Zero();
         lanes.head(count) = lambda.segment(first, count);
-        auto R = columnsOf(X);
         for (std::size_t i = 0; i < n; ++i)
         {
-          const BlockRow r = LX[i] - lanes.cwiseProduct(MX[i]);
-          for (Eigen::Index j = 0; j < count; ++j)
-          {
-            R(static_cast<Eigen::Index>(i), j) = r[j];
-          }
+          LX[i] -= lanes.cwiseProduct(MX[i]);
         }
-        auto absLx = columnsOf(LX);
-        auto absMx = columnsOf(MX);
+        auto R = columnsOf(X, count);
+        CopyOut<BlockWidth>(LX.data(), R);
+        auto absLx = columnsOf(LX, count);
+        auto absMx = columnsOf(MX, count);
         if (backward)
         {
-          for (std::size_t i = 0; i < n; ++i)
-          {
-            for (Eigen::Index j = 0; j < count; ++j)
-            {
-              absLx(static_cast<Eigen::Index>(i), j) = absLX[i][j];
-              absMx(static_cast<Eigen::Index>(i), j) = absMX[i][j];
-            }
-          }
+          CopyOut<BlockWidth>(absLX.data(), absLx);
+          CopyOut<BlockWidth>(absMX.data(), absMx);
         }
         for (Eigen::Index j = 0; j < count; ++j)
         {
