@@ -42,7 +42,9 @@ struct ShiftTooClose
  * vectors finds eigenvalues of multiplicity up to b directly. A pair counts as converged when its
  * Ritz estimate is below Tolerance and its residual below ResidualTolerance / 20 (relaxed up to
  * / 2 when the iteration stalls), relative to max(|lambda|, request.LambdaReference)
- * (LambdaReference <= 0: the band's first non-zero eigenvalue).
+ * (LambdaReference <= 0: the band's first non-zero eigenvalue). Once the pairs the band must
+ * return have settled by their Ritz estimates alone, the band refines them and lets their true
+ * residuals and backward errors decide, whatever the residual estimate counts.
  * \param factor factored at request.Sigma.
  * \param monitor polled for cancellation before every block and told the band's progress (its
  *        applications against those a band usually takes, at most 0.95) after every block.
