@@ -401,26 +401,28 @@ double FilterStageMilliseconds(const View& H,
   return samples[samples.size() / 2];
 }
 
-/// The filter-stage column: 1 and 2 threads, on the double basis and on its float copy.
+/// The filter-stage column: 1 and 2 threads, on the double basis and on its float copy, for the
+/// coordinates `points` (one row per row of the basis and of `mass`).
 std::string FilterStageColumn(const spectral::TriangleMesh& mesh,
-  const spectral::EigenResult& result,
-  const spectral::Vector& mass)
+  const spectral::DenseMatrix& harmonics,
+  const spectral::Vector& eigenvalues,
+  const spectral::Vector& mass,
+  const spectral::RowMatrix& points)
 {
-  const spectral::RowMatrix basis = result.Eigenvectors;
+  const spectral::RowMatrix basis = harmonics;
   const spectral::BasisView H(basis.data(), basis.rows(), basis.cols());
-  const spectral::RowMatrix points = mesh.Vertices;
   const spectral::RowMatrix coefficients = spectral::ForwardTransform(
     H, mass, spectral::ConstRowView(points.data(), points.rows(), points.cols()));
   const double double1 =
-    FilterStageMilliseconds(H, mesh, result.Eigenvalues, mass, points, coefficients, 1);
+    FilterStageMilliseconds(H, mesh, eigenvalues, mass, points, coefficients, 1);
   const double double2 =
-    FilterStageMilliseconds(H, mesh, result.Eigenvalues, mass, points, coefficients, 2);
+    FilterStageMilliseconds(H, mesh, eigenvalues, mass, points, coefficients, 2);
   const spectral::FloatRowMatrix floats = basis.cast<float>();
   const spectral::FloatBasisView Hf(floats.data(), floats.rows(), floats.cols());
   const double float1 =
-    FilterStageMilliseconds(Hf, mesh, result.Eigenvalues, mass, points, coefficients, 1);
+    FilterStageMilliseconds(Hf, mesh, eigenvalues, mass, points, coefficients, 1);
   const double float2 =
-    FilterStageMilliseconds(Hf, mesh, result.Eigenvalues, mass, points, coefficients, 2);
+    FilterStageMilliseconds(Hf, mesh, eigenvalues, mass, points, coefficients, 2);
   char buffer[160];
   std::snprintf(buffer,
     sizeof(buffer),
@@ -559,19 +561,42 @@ int RunCase(const Settings& settings, int n, int m)
   const spectral::SparseMatrix& L = ops.Stiffness;
   const spectral::SparseMatrix& M = ops.Mass;
   const bool vectors = result.Eigenvectors.cols() > 0;
+  // The harmonics on every row of the operators: the basis leaves out the rows of the
+  // components none of its harmonics represents (more components than harmonics, a scan's
+  // islands), whose harmonics are zero. Both name their rows by input point.
+  spectral::DenseMatrix allRows;
+  if (vectors && result.Eigenvectors.rows() != L.rows())
+  {
+    std::vector<Eigen::Index> rowOf(mesh.Vertices.rows(), -1);
+    for (std::size_t j = 0; j < ops.InputPointIds.size(); ++j)
+    {
+      rowOf[static_cast<std::size_t>(ops.InputPointIds[j])] = static_cast<Eigen::Index>(j);
+    }
+    allRows = spectral::DenseMatrix::Zero(L.rows(), result.Eigenvectors.cols());
+    for (std::size_t r = 0; r < basis.InputPointIds.size(); ++r)
+    {
+      allRows.row(rowOf[static_cast<std::size_t>(basis.InputPointIds[r])]) =
+        result.Eigenvectors.row(static_cast<Eigen::Index>(r));
+    }
+  }
+  const spectral::DenseMatrix& harmonics = allRows.size() ? allRows : result.Eigenvectors;
   char orthogonality[16] = "       -";
   if (vectors)
   {
-    std::snprintf(orthogonality,
-      sizeof(orthogonality),
-      "%8.1e",
-      spectral::OrthonormalityError(result.Eigenvectors, M));
+    std::snprintf(
+      orthogonality, sizeof(orthogonality), "%8.1e", spectral::OrthonormalityError(harmonics, M));
   }
 
   std::string filter = steps;
   if (settings.Filter && vectors && !settings.Cloud)
   {
-    filter = FilterStageColumn(mesh, result, M.diagonal());
+    // The points of the operators' rows (a scan's unused points have none).
+    spectral::RowMatrix points(L.rows(), 3);
+    for (Eigen::Index j = 0; j < L.rows(); ++j)
+    {
+      points.row(j) = mesh.Vertices.row(ops.InputPointIds[static_cast<std::size_t>(j)]);
+    }
+    filter = FilterStageColumn(mesh, harmonics, result.Eigenvalues, M.diagonal(), points);
   }
 
   if (settings.Volume)
