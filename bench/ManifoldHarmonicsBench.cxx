@@ -565,7 +565,8 @@ int RunCase(const Settings& settings, int n, int m)
   // components none of its harmonics represents (more components than harmonics, a scan's
   // islands), whose harmonics are zero. Both name their rows by input point.
   spectral::DenseMatrix allRows;
-  if (vectors && result.Eigenvectors.rows() != L.rows())
+  if (vectors && result.Eigenvectors.rows() != L.rows() &&
+    ops.InputPointIds.size() == static_cast<std::size_t>(L.rows()))
   {
     std::vector<Eigen::Index> rowOf(mesh.Vertices.rows(), -1);
     for (std::size_t j = 0; j < ops.InputPointIds.size(); ++j)
