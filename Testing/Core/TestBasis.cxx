@@ -483,7 +483,8 @@ void ScanDefectsGiveABasis()
   defects.Needles = 40;
   defects.ZeroArea = 30;
   defects.Islands = 200;
-  const TriangleMesh mesh = WithScanDefects(NoisyTorusOfSize(20000, 0.02), defects);
+  const TriangleMesh torus = NoisyTorusOfSize(20000, 0.02);
+  const TriangleMesh mesh = WithScanDefects(torus, defects);
   for (const LaplacianKind laplacian :
     { LaplacianKind::Cotangent, LaplacianKind::IntrinsicDelaunay })
   {
@@ -524,7 +525,7 @@ void ScanDefectsGiveABasis()
       // waited for a second restart before the check that accepts them by their backward errors
       // (23% to 38% more operator applications than without the defects, over 1 to 8 threads
       // and perturbation seeds 1 to 3; 0% to 7% since).
-      const BasisResult clean = ComputeBasis(NoisyTorusOfSize(20000, 0.02), options);
+      const BasisResult clean = ComputeBasis(torus, options);
       CheckBelow(static_cast<double>(basis.Pairs.OperatorApplications) /
           static_cast<double>(clean.Pairs.OperatorApplications),
         1.2,
