@@ -9,8 +9,8 @@
  * ratio and the largest eigenvalue difference; with --slepc, SLEPc's Krylov-Schur with a MUMPS
  * factor the same way, nearest a target and by spectrum slicing (slepc_reference.py, Debian's
  * python3-slepc4py), and the ratio to the fastest peer that agrees (PeerAgreement). With
- * --factor it times the factorization of L - sigma M, the solver's against MUMPS's
- * (FactorComparison).
+ * --factor it times the factorization of L - sigma M, the solver's against MUMPS's, and the
+ * solver's solves of blocks of 4 to 16 right-hand sides (FactorComparison).
  *
  * Each case runs in a child process so that its peak memory is its own.
  *
@@ -235,13 +235,53 @@ std::vector<PeerRun> RunPeers(const Settings& settings,
 }
 
 /**
+ * How the solves of the factor `ldlt` (factored, `rows` rows) grow with the number of right-hand
+ * sides: the median of 21 solves of 4, 8, 12 and 16 random columns, in milliseconds, on `threads`
+ * threads (0: every core) and on one. A solve bound by reading the factor would take about the same
+ * time for every width; one bound by its arithmetic, a time in proportion to the width.
+ */
+std::string SolveWidths(spectral::SupernodalLDLT& ldlt, Eigen::Index rows, int threads)
+{
+  std::string out;
+  char buffer[128];
+  const int restore = ldlt.GetThreads();
+  for (const int t : { threads, 1 })
+  {
+    ldlt.SetThreads(t);
+    std::snprintf(buffer,
+      sizeof(buffer),
+      "; solves of 4/8/12/16 columns, %s:",
+      t == 1 ? "1 thread" : "threads");
+    out += buffer;
+    for (const int columns : { 4, 8, 12, 16 })
+    {
+      const spectral::DenseMatrix B = spectral::DenseMatrix::Random(rows, columns);
+      std::vector<double> seconds;
+      for (int k = 0; k < 21; ++k)
+      {
+        const Clock::time_point start = Clock::now();
+        const spectral::DenseMatrix X = ldlt.Solve(B);
+        seconds.push_back(Since(start));
+      }
+      std::nth_element(seconds.begin(), seconds.begin() + 10, seconds.end());
+      std::snprintf(buffer, sizeof(buffer), " %.1f", 1e3 * seconds[10]);
+      out += buffer;
+    }
+    out += " ms";
+  }
+  ldlt.SetThreads(restore);
+  return out;
+}
+
+/**
  * The factorization of L - sigma M by the solver's SupernodalLDLT and by MUMPS (mumps_reference.py,
  * through PETSc), at the same shifts: -0.01 (below the spectrum, scipy's shift), the middle of
  * the pairs (between lambda_{j-1} and lambda_j for the first j >= m/2 where they differ by more
  * than 1e-6 relative) and the top (the same for the last such j <= m - 1), in that order. For each:
  * the seconds of the numerical factorization (MUMPS's first includes its analysis; the solver's
  * analysis, CHOLMOD's, is given apart), the negative pivots (which must agree) and the seconds of
- * solving FactorColumns random right-hand sides.
+ * solving FactorColumns random right-hand sides; then, at the top shift, the solver's solves of
+ * 4 to 16 right-hand sides (SolveWidths).
  */
 constexpr int FactorColumns = 16;
 std::string FactorComparison(const Settings& settings,
@@ -299,6 +339,9 @@ std::string FactorComparison(const Settings& settings,
     std::snprintf(buffer, sizeof(buffer), "  %.3f s, %.3f s, %d", factor, solve, ours.back());
     out += buffer;
   }
+  // Timed before MUMPS runs, printed after its figures.
+  const std::string widths =
+    !ours.empty() && ours.back() >= 0 ? SolveWidths(ldlt, L.rows(), settings.Threads) : "";
   const std::string& base = files.Base;
   std::string command = "/usr/bin/python3 " + settings.ScriptDir + "/mumps_reference.py " +
     files.Paths() + std::to_string(FactorColumns) + " " + base + "-mumps.txt";
@@ -332,7 +375,7 @@ std::string FactorComparison(const Settings& settings,
     out += "  failed";
   }
   std::remove((base + "-mumps.txt").c_str());
-  return out;
+  return out + widths;
 }
 
 /// The largest relative difference between the first m eigenvalues of a peer and the product's
