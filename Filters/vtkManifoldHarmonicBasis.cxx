@@ -40,6 +40,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -284,7 +285,8 @@ vtkSmartPointer<vtkUnsignedCharArray> WeldedDuplicates(
 
 //------------------------------------------------------------------------------
 // The arrays of a distributed run on the output of one process: its rows of the harmonics and
-// mass (also on its ghost points: the owner's rows), the eigenvalues, and the point ghost array:
+// mass (also on its ghost points: the owner's rows), the eigenvalues and the worst pair's figures
+// (AddSpectrumArrays, as on every basis output), and the point ghost array:
 // DUPLICATEPOINT on the points another process owns, the input's other flags kept. The cell
 // ghost array is the input's. The harmonics are converted to floats when
 // `floats` is true.
@@ -306,12 +308,8 @@ void AddPieceArrays(vtkPointSet* output,
   output->GetPointData()->AddArray(harmonics);
   output->GetPointData()->AddArray(rows.Mass);
   AddPointGhosts(output, input, rows.Duplicates);
-
-  vtkNew<vtkDoubleArray> eigenvalues;
-  eigenvalues->SetName(vtkManifoldHarmonicBasis::EigenvaluesArrayName());
-  eigenvalues->SetNumberOfTuples(m);
-  std::copy(rows.Eigenvalues.data(), rows.Eigenvalues.data() + m, eigenvalues->GetPointer(0));
-  output->GetFieldData()->AddArray(eigenvalues);
+  vtkManifoldHarmonicsBasisFile::AddSpectrumArrays(
+    output, rows.Eigenvalues.data(), m, rows.MaxBackwardError, rows.MaxResidual);
 }
 
 //------------------------------------------------------------------------------
@@ -524,9 +522,7 @@ void SolveWithSlepc(vtkManifoldHarmonicBasis* self,
   AddPieceArrays(
     output, input, result.Rows, self->GetBasisPrecision() == vtkManifoldHarmonicBasis::FLOAT);
   for (const auto& figure :
-    { std::make_pair(vtkManifoldHarmonicsNames::BackwardError, result.MaxBackwardError),
-      std::make_pair(vtkManifoldHarmonicsNames::Residual, result.MaxResidual),
-      std::make_pair(vtkManifoldHarmonicsNames::OrthonormalityError, result.OrthonormalityError),
+    { std::make_pair(vtkManifoldHarmonicsNames::OrthonormalityError, result.OrthonormalityError),
       std::make_pair(
         vtkManifoldHarmonicsNames::InertiaCount, static_cast<double>(result.InertiaCount)) })
   {
@@ -910,6 +906,7 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
   spectral::RowMatrix harmonics;
   spectral::Vector mass;
   spectral::Vector eigenvalues;
+  std::array<double, 2> figures = { 0.0, 0.0 };
   if (controller->GetLocalProcessId() == 0)
   {
     Solution solution;
@@ -918,11 +915,12 @@ int vtkManifoldHarmonicBasis::ComputeDistributedBasis(vtkMultiProcessController*
     {
       ::FullRows(*solution.Basis, merged.Surface->GetNumberOfPoints(), harmonics, mass);
       eigenvalues = solution.Basis->Pairs.Eigenvalues;
+      figures = { solution.Basis->Pairs.MaxBackwardError, solution.Basis->Pairs.MaxResidual };
     }
   }
   vtkManifoldHarmonicsParallel::PieceBasis rows;
   if (!vtkManifoldHarmonicsParallel::ScatterBasis(
-        controller, harmonics.size() > 0, merged, harmonics, mass, eigenvalues, rows))
+        controller, harmonics.size() > 0, merged, harmonics, mass, eigenvalues, figures, rows))
   {
     // Fail on every process (also after a cancel), so that no downstream stage runs on some
     // processes only and waits for the others.

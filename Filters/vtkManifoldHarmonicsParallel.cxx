@@ -328,6 +328,7 @@ bool ScatterBasis(vtkMultiProcessController* controller,
   const spectral::RowMatrix& harmonics,
   const spectral::Vector& mass,
   const spectral::Vector& eigenvalues,
+  const std::array<double, 2>& figures,
   PieceBasis& piece)
 {
   const int rank = controller->GetLocalProcessId();
@@ -344,6 +345,10 @@ bool ScatterBasis(vtkMultiProcessController* controller,
     piece.Eigenvalues = eigenvalues;
   }
   controller->Broadcast(piece.Eigenvalues.data(), header[1], 0);
+  std::array<double, 2> worst = figures;
+  controller->Broadcast(worst.data(), 2, 0);
+  piece.MaxBackwardError = worst[0];
+  piece.MaxResidual = worst[1];
 
   piece.Harmonics = vtkSmartPointer<vtkDoubleArray>::New();
   piece.Harmonics->SetNumberOfComponents(header[1]);

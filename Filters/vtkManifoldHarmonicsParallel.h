@@ -26,6 +26,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -83,12 +84,17 @@ struct PieceBasis
   vtkSmartPointer<vtkDoubleArray> Mass;
   vtkSmartPointer<vtkUnsignedCharArray> Duplicates;
   spectral::Vector Eigenvalues;
+  /// The worst pair's backward error and residual of the whole solve (the same on every
+  /// process): the figures every basis output carries (AddSpectrumArrays).
+  double MaxBackwardError = 0.0;
+  double MaxResidual = 0.0;
 };
 
 /**
  * Send every process the rows of its points. On process 0 `ok` says whether the solve
- * succeeded and `harmonics` (merged n by m), `mass` (merged n) and `eigenvalues` (m) hold its
- * result; other processes pass empty values. \return false on every process if process 0 failed.
+ * succeeded and `harmonics` (merged n by m), `mass` (merged n), `eigenvalues` (m) and
+ * `figures` (its MaxBackwardError and MaxResidual) hold its result; other processes pass empty
+ * values. \return false on every process if process 0 failed.
  */
 bool ScatterBasis(vtkMultiProcessController* controller,
   bool ok,
@@ -96,6 +102,7 @@ bool ScatterBasis(vtkMultiProcessController* controller,
   const spectral::RowMatrix& harmonics,
   const spectral::Vector& mass,
   const spectral::Vector& eigenvalues,
+  const std::array<double, 2>& figures,
   PieceBasis& piece);
 
 /// A named m by c matrix of coefficients (or any values to add over processes).

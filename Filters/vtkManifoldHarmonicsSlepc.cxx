@@ -48,6 +48,8 @@ Result Solve(vtkMultiProcessController* controller,
   // The mass and the DUPLICATEPOINT flags of this piece's points.
   const vtkIdType n = static_cast<vtkIdType>(piece.Vertices.rows());
   rows.Eigenvalues = result.Eigenvalues;
+  rows.MaxBackwardError = result.MaxBackwardError;
+  rows.MaxResidual = result.MaxResidual;
   rows.Mass = vtkSmartPointer<vtkDoubleArray>::New();
   rows.Mass->SetNumberOfTuples(n);
   rows.Duplicates = vtkSmartPointer<vtkUnsignedCharArray>::New();
