@@ -248,6 +248,10 @@ std::string SolveWidths(spectral::SupernodalLDLT& ldlt, Eigen::Index rows, int t
   const int restore = ldlt.GetThreads();
   for (const int t : { threads, 1 })
   {
+    if (t == 1 && threads == 1 && !out.empty())
+    {
+      break; // --threads 1: one row
+    }
     ldlt.SetThreads(t);
     std::snprintf(buffer,
       sizeof(buffer),
