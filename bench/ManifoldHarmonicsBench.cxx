@@ -246,12 +246,11 @@ std::string SolveWidths(spectral::SupernodalLDLT& ldlt, Eigen::Index rows, int t
   std::string out;
   char buffer[128];
   const int restore = ldlt.GetThreads();
-  for (const int t : { threads, 1 })
+  // The given threads, then one (a single row with --threads 1).
+  const std::vector<int> counts =
+    threads == 1 ? std::vector<int>{ 1 } : std::vector<int>{ threads, 1 };
+  for (const int t : counts)
   {
-    if (t == 1 && threads == 1 && !out.empty())
-    {
-      break; // --threads 1: one row
-    }
     ldlt.SetThreads(t);
     std::snprintf(buffer,
       sizeof(buffer),
