@@ -386,6 +386,17 @@ vtkDataObject* vtkFunctionalMap::GetSource()
 //------------------------------------------------------------------------------
 int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable* table)
 {
+  const std::string nan =
+    vtkManifoldHarmonicsParameters::NotANumber({ { "MemoryLimit", this->MemoryLimit },
+      { "DescriptorWeight", this->DescriptorWeight },
+      { "CommutativityWeight", this->CommutativityWeight },
+      { "LandmarkWeight", this->LandmarkWeight },
+      { "OrientationWeight", this->OrientationWeight } });
+  if (!nan.empty())
+  {
+    vtkErrorMacro(<< nan);
+    return 0;
+  }
   vtkPointSet* inputs[2] = { target,
     this->GetNumberOfInputConnections(1) > 0
       ? vtkPointSet::SafeDownCast(this->GetExecutive()->GetInputData(1, 0))

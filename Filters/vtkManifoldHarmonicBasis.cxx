@@ -34,6 +34,7 @@
 
 #include "Spectral/Basis.h"
 #include "Spectral/Common/BasisFile.h"
+#include "Spectral/Operators/Operators.h"
 
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
 #include "vtkManifoldHarmonicsSlepc.h"
@@ -364,6 +365,11 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
 }
 
 //------------------------------------------------------------------------------
+// The warning of an input without points, or with points only lines or vertices use.
+constexpr const char* NothingToSolve =
+  "No polygons or volume cells to compute manifold harmonics on";
+
+//------------------------------------------------------------------------------
 // The warning of a distributed run with WeldSeams off.
 constexpr const char* KeptSeamsIgnored =
   "WeldSeams is off, but a distributed run merges the points that coincide within SeamTolerance "
@@ -383,6 +389,29 @@ void WarnAboutCells(vtkManifoldHarmonicBasis* self,
   if (!cloud.empty())
   {
     vtkWarningWithObjectMacro(self, << cloud);
+  }
+}
+
+//------------------------------------------------------------------------------
+// With WeldSeams on: boundary points nearly on top of each other that the weld left apart
+// (spectral::FindOpenSeams), which make the harmonics those of a cut surface.
+void WarnAboutOpenSeams(vtkManifoldHarmonicBasis* self, const spectral::TriangleMesh& solved)
+{
+  if (!self->GetWeldSeams() || solved.Faces.rows() == 0)
+  {
+    return;
+  }
+  const spectral::OpenSeams open = spectral::FindOpenSeams(solved);
+  if (open.Pairs > 0)
+  {
+    vtkWarningWithObjectMacro(self,
+      << open.Pairs << " pairs of boundary points lie within " << spectral::OpenSeamGap
+      << " of the mean edge length of each other (up to " << open.LargestGap
+      << " of the bounding box diagonal apart) without sharing an edge: seams left open, so the "
+         "harmonics are those of a surface cut there. If they are copies of one point, raise "
+         "SeamTolerance above "
+      << open.LargestGap << " (it is " << self->GetSeamTolerance()
+      << "), or merge them first (Clean in ParaView, vtkCleanPolyData, with a tolerance).");
   }
 }
 
@@ -825,6 +854,15 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
   vtkPointSet* output,
   vtkTable* vtkNotUsed(table))
 {
+  const std::string nan =
+    vtkManifoldHarmonicsParameters::NotANumber({ { "Tolerance", this->Tolerance },
+      { "SeamTolerance", this->SeamTolerance },
+      { "MemoryLimit", this->MemoryLimit } });
+  if (!nan.empty())
+  {
+    vtkErrorMacro(<< nan);
+    return 0;
+  }
   if ((this->Storage == FILE || !this->BasisFileName.empty()) &&
     (this->Solver == SLEPC || vtkManifoldHarmonicsParallel::DistributedController()))
   {
@@ -850,20 +888,38 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
     // vtkPolyData surfaces are gathered so far (both counts are collective); volumes and
     // point clouds (points without a surface) are refused.
     const bool otherCells = !hasSurface && input->GetNumberOfPoints() > 0;
+    // Points without cells, or with vertex cells only: a point cloud.
+    const bool cloud = otherCells &&
+      (input->GetNumberOfCells() == 0 || (surface && surface->GetNumberOfLines() == 0));
     const int others = vtkManifoldHarmonicsParallel::CountRanks(controller, otherCells);
-    if (vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface || otherCells) > 1)
+    const int clouds = vtkManifoldHarmonicsParallel::CountRanks(controller, cloud);
+    const int holders =
+      vtkManifoldHarmonicsParallel::CountRanks(controller, hasSurface || otherCells);
+    if (holders > 1)
     {
+      if (clouds > 0)
+      {
+        vtkErrorMacro(<< "A point cloud (points without triangles or tetrahedra) held by several "
+                         "processes has no harmonics yet: neither solver takes a distributed "
+                         "cloud. Compute its harmonics in a serial run, or gather it on one "
+                         "process first (Merge Blocks, Reduction).");
+        return 0;
+      }
       if (others > 0)
       {
-        vtkErrorMacro(<< "The Built-in solver takes distributed vtkPolyData surfaces only: this "
-                         "mesh ("
+        vtkErrorMacro(<< "The Built-in solver takes distributed surfaces (vtkPolyData with "
+                         "polygons) only: this mesh, a volume or other cells ("
                       << input->GetClassName()
-                      << ") is held by several processes. Choose Solver SLEPc (volumes), "
+                      << " on this process), is held by several processes. Choose Solver SLEPc, "
                          "compute its harmonics in a serial run, or gather it on one process "
                          "first (Merge Blocks, Reduction).");
         return 0;
       }
       return this->ComputeDistributedBasis(controller, surface, vtkPolyData::SafeDownCast(output));
+    }
+    if (holders == 0 && controller->GetLocalProcessId() == 0)
+    {
+      vtkWarningMacro(<< NothingToSolve << ", in any process's piece; passing the input through.");
     }
     if (!hasSurface && !otherCells)
     {
@@ -1033,8 +1089,7 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
   }
   if (numPts == 0 || (!cells.HasCells() && !cells.IsPointCloud()))
   {
-    vtkWarningMacro(<< "No polygons or volume cells to compute manifold harmonics on; passing "
-                       "the input through.");
+    vtkWarningMacro(<< NothingToSolve << "; passing the input through.");
     return 1;
   }
   ::WarnAboutCells(this, cells);
@@ -1086,6 +1141,7 @@ int vtkManifoldHarmonicBasis::Solve(vtkPointSet* input,
              spectral::TriangleMesh welded;
              const bool merged =
                weld && ::WeldMesh(cells.Mesh, input, this->SeamTolerance, solution.Welding, welded);
+             ::WarnAboutOpenSeams(this, merged ? welded : cells.Mesh);
              if (stream)
              {
                stream->Filtered = ::StreamInto(stream->Design,

@@ -230,6 +230,15 @@ int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
 {
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
+  const std::string nan =
+    vtkManifoldHarmonicsParameters::NotANumber({ { "CutoffFraction", this->CutoffFraction },
+      { "SeamTolerance", this->SeamTolerance },
+      { "MemoryLimit", this->MemoryLimit } });
+  if (!nan.empty())
+  {
+    vtkErrorMacro(<< nan);
+    return 0;
+  }
   // Nothing to smooth without polygons: pass the input on, as the basis does, rather than let
   // the internal stages report errors about a basis they did not get. (In a distributed run the
   // stages are collective and every process runs them.)

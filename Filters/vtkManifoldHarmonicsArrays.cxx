@@ -310,17 +310,22 @@ void FillSpectrum(vtkTable* table,
 }
 
 //------------------------------------------------------------------------------
-// The number of edges that more than two distinct triangles share (duplicated triangles, which
-// the core leaves out with its own warning, count once; collapsed triangles not at all).
-static vtkIdType NonManifoldEdges(const spectral::Triangles& faces)
+// The number of edges that more than two distinct triangles of the core's mesh share: the
+// triangles the core keeps, so duplicated ones count once and degenerate ones (zero area, which
+// the core leaves out with its own warning) not at all. Triangles with an index out of range,
+// which the core refuses, are skipped.
+static vtkIdType NonManifoldEdges(const spectral::TriangleMesh& mesh)
 {
+  const spectral::Triangles& faces = mesh.Faces;
+  const Eigen::Index points = mesh.Vertices.rows();
   std::vector<std::array<int, 3>> distinct;
   distinct.reserve(static_cast<std::size_t>(faces.rows()));
   for (Eigen::Index f = 0; f < faces.rows(); ++f)
   {
     std::array<int, 3> face = { faces(f, 0), faces(f, 1), faces(f, 2) };
     std::sort(face.begin(), face.end());
-    if (face[0] != face[1] && face[1] != face[2])
+    if (face[0] >= 0 && face[2] < points && face[0] != face[1] && face[1] != face[2] &&
+      !spectral::IsDegenerateTriangle(mesh, static_cast<int>(f)))
     {
       distinct.push_back(face);
     }
@@ -433,7 +438,7 @@ std::vector<std::string> CoreMesh::Warnings() const
       " surface and volume cells, and points that only vertices or lines use stay where they "
       "are.");
   }
-  const vtkIdType nonManifold = NonManifoldEdges(this->Mesh.Faces);
+  const vtkIdType nonManifold = NonManifoldEdges(this->Mesh);
   if (nonManifold > 0)
   {
     warnings.push_back(std::to_string(nonManifold) +

@@ -45,6 +45,10 @@ const char* UnitsText(int units)
   }
 }
 
+/// Gains that differ by at most this are the same gain in the warnings' wording (0, 1, one gain
+/// for all).
+constexpr double SameGain = 1e-12;
+
 /// What the gains do to the non-constant harmonics (and to the details above them when they are
 /// re-injected), for the warnings about cutoffs outside the spectrum.
 std::string Consequence(const spectral::Vector& gains,
@@ -62,7 +66,7 @@ std::string Consequence(const spectral::Vector& gains,
       high = std::max(high, gains[k]);
     }
   }
-  const double tiny = 1e-12;
+  const double tiny = SameGain;
   std::ostringstream text;
   if (high - low <= tiny)
   {
@@ -114,8 +118,12 @@ void WarnIfOutside(vtkObject* self,
   {
     where << "lies below the first non-zero frequency " << ends.First << " of the basis";
   }
-  else if (frequency > ends.Highest ||
-    (units == vtkSpectralFilter::HARMONIC_INDEX && value > static_cast<double>(ends.Last)))
+  else if (units == vtkSpectralFilter::HARMONIC_INDEX && value > static_cast<double>(ends.Last))
+  {
+    where << "lies beyond the last computed harmonic, " << ends.Last << " (frequency "
+          << ends.Highest << ")";
+  }
+  else if (frequency > ends.Highest)
   {
     where << "lies above the highest computed frequency " << ends.Highest << " (harmonic "
           << ends.Last << ")";
@@ -242,14 +250,36 @@ void WarnAboutCutoffs(vtkObject* self,
     constants += constant[k] ? 1 : 0;
     largestZero = constant[k] && std::isfinite(lambda[k]) ? lambda[k] : largestZero;
   }
-  if (constants == m)
+  if (m > 0 && constants == m)
   {
+    // Each point is its component's centroid times F(0) plus, when re-injected, its offset from
+    // the centroid times the gain above the basis. (Components without a harmonic were left out
+    // by the basis, with its warning: their points stay.)
+    const double tiny = SameGain;
+    const double centroidGain = gains[0];
+    const double offsetGain = reinject ? highFrequencyGain : 0.0;
+    std::ostringstream effect;
+    if (std::abs(centroidGain - 1.0) <= tiny && std::abs(offsetGain) <= tiny)
+    {
+      effect << "the points of each component with a harmonic move to its centroid";
+    }
+    else if (std::abs(centroidGain - 1.0) <= tiny && std::abs(offsetGain - 1.0) <= tiny)
+    {
+      effect << "the points stay where they are";
+    }
+    else
+    {
+      effect << "each point becomes " << centroidGain
+             << " times the centroid of its component plus " << offsetGain
+             << " times its offset from that centroid";
+    }
     vtkWarningWithObjectMacro(self,
       << "The basis has no non-constant harmonic: its " << m
       << " eigenvalue(s) are all zero up to rounding (at most " << largestZero
       << "), one constant harmonic per connected component (faces that share no points, e.g. "
-         "an OBJ unwelded at its texture seams): the filter can move each component only as a "
-         "whole, not smooth or enhance it.");
+         "an OBJ unwelded at its texture seams): the filter cannot smooth or enhance a "
+         "component, and here "
+      << effect.str() << ".");
   }
   WarnAboutConstantHarmonics(self, absolute, gains, constant, largestZero);
   const bool band = given.Kind == spectral::FilterKind::BandPass ||

@@ -7,7 +7,8 @@
  * NumberOfHarmonics is a parameter of vtkManifoldHarmonicBasis and of
  * vtkManifoldHarmonicSmoothing, which refuse a value below 1 with the same error. (Its default
  * is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS.) MemoryLimit is a parameter of both
- * too, in MiB (MemoryLimitBytes). Not installed and not wrapped.
+ * too, in MiB (MemoryLimitBytes). NaN settings are refused by all filters (NotANumber). Not
+ * installed and not wrapped.
  */
 #ifndef vtkManifoldHarmonicsParameters_h
 #define vtkManifoldHarmonicsParameters_h
@@ -16,11 +17,14 @@
 #include "vtkObject.h"
 #include "vtkSetGet.h"
 
-#include <algorithm> // For std::max
-#include <cstdint>   // For std::uint64_t
-#include <iomanip>   // For std::setprecision
-#include <sstream>   // For Bytes
-#include <string>    // For Bytes
+#include <algorithm>        // For std::max
+#include <cmath>            // For std::isnan
+#include <cstdint>          // For std::uint64_t
+#include <initializer_list> // For NotANumber
+#include <iomanip>          // For std::setprecision
+#include <sstream>          // For Bytes
+#include <string>           // For Bytes
+#include <utility>          // For std::pair
 
 namespace vtkManifoldHarmonicsParameters
 {
@@ -39,6 +43,26 @@ inline bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
     return false;
   }
   return true;
+}
+
+/**
+ * An error text naming the parameters among `values` (name, value) that are NaN, empty if none.
+ * vtkSetClampMacro lets NaN through; the filters refuse it when they execute, with the same
+ * settings on every process of a distributed run.
+ */
+inline std::string NotANumber(std::initializer_list<std::pair<const char*, double>> values)
+{
+  std::string names;
+  int count = 0;
+  for (const auto& value : values)
+  {
+    if (std::isnan(value.second))
+    {
+      names += (count++ > 0 ? ", " : "") + std::string(value.first);
+    }
+  }
+  return count == 0 ? names
+                    : names + (count == 1 ? " is" : " are") + " NaN (not a number): set a number.";
 }
 
 /// MemoryLimit (MiB, vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing) in bytes for the

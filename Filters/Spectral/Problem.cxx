@@ -9,6 +9,18 @@
 
 namespace spectral
 {
+//------------------------------------------------------------------------------
+std::string NoMoreHarmonicsThanComponents(int m, int components)
+{
+  const std::string count = std::to_string(components);
+  return "NumberOfHarmonics " + std::to_string(m) + " does not exceed the " + count +
+    " connected components: every harmonic is constant on one component (eigenvalue 0), so a "
+    "spectral filter cannot smooth or enhance a component: it scales each component's centroid by "
+    "the gain at frequency 0 and the offsets from it by one gain (with the default low pass the "
+    "points of each component with a harmonic move to its centroid). Ask for more than " +
+    count + " harmonics, or leave out small components with MinimumComponentSize.";
+}
+
 namespace
 {
 //------------------------------------------------------------------------------
@@ -31,28 +43,31 @@ int Clamped(int requested,
 //------------------------------------------------------------------------------
 // Warnings about the components, before the solve: how many zero eigenvalues they give, how to
 // weld unwelded seams, and a request for no more harmonics than components.
-void ReportComponents(int components, int m, const Monitor& monitor, BasisResult& result)
+void ReportComponents(const Problem& problem,
+  int components,
+  int m,
+  const Monitor& monitor,
+  BasisResult& result)
 {
   if (components <= 1)
   {
     return;
   }
   const std::string count = std::to_string(components);
-  Report({ "The surface has " + count + " connected components: the first " + count +
-           " eigenvalues are zero, one for each. If they are pieces of one surface whose "
-           "seams are not welded, weld them: WeldSeams on, with a SeamTolerance above the gap "
-           "between the copies of a seam point (or vtkCleanPolyData, Clean in ParaView, with a "
-           "tolerance); leave out small debris with MinimumComponentSize." },
+  const std::string kind = problem.Prepared.Mesh.Vertices.rows() == 0
+    ? "point cloud"
+    : (problem.Dimension == 3 ? "volume" : "surface");
+  Report({ "The " + kind + " has " + count + " connected components: the first " + count +
+           " eigenvalues are zero, one for each. If they are pieces of one " + kind +
+           " whose seams are not welded, weld them: WeldSeams on, with a SeamTolerance above "
+           "the gap between the copies of a seam point (or Clean, Clean to Grid in ParaView, "
+           "vtkCleanPolyData, with a tolerance); leave out small debris with "
+           "MinimumComponentSize." },
     monitor,
     result);
   if (m <= components)
   {
-    Report({ "NumberOfHarmonics " + std::to_string(m) + " does not exceed the " + count +
-             " connected components: every harmonic is constant on one component (eigenvalue "
-             "0), so filtering can only move whole components. Ask for more than " +
-             count + " harmonics, or leave out small components with MinimumComponentSize." },
-      monitor,
-      result);
+    Report({ NoMoreHarmonicsThanComponents(m, components) }, monitor, result);
   }
 }
 
@@ -262,7 +277,7 @@ Problem PrepareProblem(const TriangleMesh& mesh,
   result.ConstantHarmonics = ops.ConstantHarmonics;
   if (ops.ConstantHarmonics && !problem.Window)
   {
-    ReportComponents(result.Components, problem.Harmonics, monitor, result);
+    ReportComponents(problem, result.Components, problem.Harmonics, monitor, result);
   }
   return problem;
 }
@@ -272,7 +287,7 @@ void ReportComponentsOf(const Problem& problem, int m, const Monitor& monitor, B
 {
   if (problem.Operators.ConstantHarmonics)
   {
-    ReportComponents(problem.Operators.Components.Count, m, monitor, result);
+    ReportComponents(problem, problem.Operators.Components.Count, m, monitor, result);
   }
 }
 } // namespace spectral

@@ -88,6 +88,11 @@ Problem PrepareProblem(const TriangleMesh& mesh,
   const Monitor& monitor,
   BasisResult& result);
 
+/// The warning of a request for m harmonics on a surface or volume of `components` > 1 connected
+/// components with m <= components: every harmonic is constant on one component, and what a
+/// spectral filter can still do with them. The one text of both engines.
+std::string NoMoreHarmonicsThanComponents(int m, int components);
+
 /// The warnings about the components of the problem for m harmonics (with natural conditions):
 /// their zero eigenvalues, welding seams, and a request for no more harmonics than components.
 void ReportComponentsOf(const Problem& problem, int m, const Monitor& monitor, BasisResult& result);

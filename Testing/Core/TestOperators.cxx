@@ -323,6 +323,66 @@ void MeshMeasures()
   Check(ConnectedComponents(DegenerateMesh()) == 2, "isolated point counts as a component");
 }
 
+/// The torus of Torus(2, 0.5, nu, nv) cut open along its ring u = 0: the triangles of the last
+/// strip use copies of that ring's points, moved by `gap` times the bounding box diagonal along y.
+TriangleMesh TorusWithOpenSeam(int nu, int nv, double gap)
+{
+  TriangleMesh mesh = Torus(2.0, 0.5, nu, nv);
+  const double diagonal = BoundingBoxDiagonal(mesh.Vertices);
+  mesh.Vertices.conservativeResize(nu * nv + nv, 3);
+  for (int j = 0; j < nv; ++j)
+  {
+    mesh.Vertices.row(nu * nv + j) = mesh.Vertices.row(j);
+    mesh.Vertices(nu * nv + j, 1) += gap * diagonal;
+  }
+  for (int f = 2 * (nu - 1) * nv; f < 2 * nu * nv; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      mesh.Faces(f, c) += mesh.Faces(f, c) < nv ? nu * nv : 0;
+    }
+  }
+  return mesh;
+}
+
+/// FindOpenSeams: a seam left open by 1e-9 or 1e-5 of the diagonal is found, each of its nv
+/// point pairs once, with its gap; closed surfaces, a rectangle's boundary, a scan's defects
+/// (near-coincident points joined by their tiny edges, needles, zero-area triangles, whose
+/// edges to their midpoint are boundary edges) and a seam opened by more than OpenSeamGap edge
+/// lengths are not. (Not the scan model's islands: two of them may overlap by chance, and two
+/// pieces of surface nearly on top of each other are what the warning is for.)
+void OpenSeamsFound()
+{
+  const int nu = 40;
+  const int nv = 16;
+  for (const double gap : { 1e-9, 1e-5 })
+  {
+    const OpenSeams open = FindOpenSeams(TorusWithOpenSeam(nu, nv, gap));
+    Check(open.Pairs == nv,
+      "a seam opened by " + std::to_string(gap) + ": " + std::to_string(open.Pairs) +
+        " pairs found, not " + std::to_string(nv));
+    Check(std::abs(open.LargestGap - gap) <= 1e-3 * gap,
+      "a seam opened by " + std::to_string(gap) + ": largest gap " +
+        std::to_string(open.LargestGap));
+  }
+  const TriangleMesh wide = TorusWithOpenSeam(nu, nv, 0.0);
+  const double edge = MeanEdgeLength(wide) / BoundingBoxDiagonal(wide.Vertices);
+  Check(FindOpenSeams(TorusWithOpenSeam(nu, nv, 2.0 * OpenSeamGap * edge)).Pairs == 0,
+    "a gap of twice OpenSeamGap edge lengths is no seam");
+  for (const Named& named : Meshes())
+  {
+    Check(FindOpenSeams(named.Mesh).Pairs == 0, std::string(named.Name) + " has an open seam");
+  }
+  ScanDefects defects;
+  defects.NearCoincident = 40;
+  defects.Needles = 40;
+  defects.ZeroArea = 30;
+  const OpenSeams scan = FindOpenSeams(WithScanDefects(NoisyTorusOfSize(20000, 0.02), defects));
+  Check(
+    scan.Pairs == 0, "a scan's defects taken for " + std::to_string(scan.Pairs) + " open seams");
+  Check(FindOpenSeams(TriangleMesh()).Pairs == 0, "an empty mesh has an open seam");
+}
+
 const Case Cases[] = {
   { "StiffnessSymmetric", StiffnessSymmetric },
   { "StiffnessConstantsInKernel", StiffnessConstantsInKernel },
@@ -333,6 +393,7 @@ const Case Cases[] = {
   { "PrepareMeshDropsDegenerate", PrepareMeshDropsDegenerate },
   { "PrepareMeshRejectsBadInput", PrepareMeshRejectsBadInput },
   { "MeshMeasures", MeshMeasures },
+  { "OpenSeamsFound", OpenSeamsFound },
 };
 } // namespace
 

@@ -214,10 +214,7 @@ void Engine::ZeroModes()
   this->Zeros = std::min(this->M, this->Parts.Count);
   if (this->Parts.Count > 1 && this->M <= this->Parts.Count)
   {
-    this->Warn("NumberOfHarmonics " + std::to_string(this->M) + " does not exceed the " +
-      std::to_string(this->Parts.Count) +
-      " connected components: every harmonic is constant on one component (eigenvalue 0), so "
-      "filtering can only move whole components.");
+    this->Warn(NoMoreHarmonicsThanComponents(this->M, this->Parts.Count));
   }
 }
 

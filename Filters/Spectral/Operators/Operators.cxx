@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) Manifold Harmonics developers
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Operators/Operators.h"
+#include "Common/Seams.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -11,6 +12,8 @@
 #include <cstdio>
 #include <numeric>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace spectral
 {
@@ -309,6 +312,12 @@ SparseMatrix TetStiffness(const TriangleMesh& mesh)
   return assembly.Matrix();
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+bool IsDegenerateTriangle(const TriangleMesh& mesh, int f)
+{
+  return IsDegenerate(mesh, f);
+}
 
 //------------------------------------------------------------------------------
 PreparedMesh PrepareMesh(const TriangleMesh& input)
@@ -697,5 +706,100 @@ double MeanEdgeLength(const TriangleMesh& mesh)
 double EdgeCount(const TriangleMesh& mesh)
 {
   return 3.0 * static_cast<double>(mesh.Faces.rows()) + 6.0 * static_cast<double>(mesh.Tets.rows());
+}
+
+//------------------------------------------------------------------------------
+OpenSeams FindOpenSeams(const TriangleMesh& mesh)
+{
+  OpenSeams found;
+  const Triangles& faces = mesh.Faces;
+  const Eigen::Index n = mesh.Vertices.rows();
+  TriangleMesh surface; // the triangles whose indices are in range
+  surface.Vertices = mesh.Vertices;
+  surface.Faces.resize(faces.rows(), 3);
+  Eigen::Index kept = 0;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+  {
+    if (faces.row(f).minCoeff() >= 0 && faces.row(f).maxCoeff() < n)
+    {
+      surface.Faces.row(kept++) = faces.row(f);
+    }
+  }
+  surface.Faces.conservativeResize(kept, 3);
+  const double radius = OpenSeamGap * MeanEdgeLength(surface);
+  if (!(radius > 0.0) || !std::isfinite(radius))
+  {
+    return found;
+  }
+  // Every edge (smaller id first) once per triangle; an edge met once is on the boundary.
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(static_cast<std::size_t>(3 * kept));
+  for (Eigen::Index f = 0; f < kept; ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int a = surface.Faces(f, c);
+      const int b = surface.Faces(f, (c + 1) % 3);
+      if (a != b)
+      {
+        edges.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<int> ids; // the boundary points
+  std::vector<char> boundary(static_cast<std::size_t>(n), 0);
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i])
+    {
+      ++j;
+    }
+    if (j - i == 1)
+    {
+      boundary[static_cast<std::size_t>(edges[i].first)] = 1;
+      boundary[static_cast<std::size_t>(edges[i].second)] = 1;
+    }
+    i = j;
+  }
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> xyz;
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    if (boundary[static_cast<std::size_t>(i)])
+    {
+      ids.push_back(static_cast<int>(i));
+      xyz.insert(xyz.end(), mesh.Vertices.data() + 3 * i, mesh.Vertices.data() + 3 * i + 3);
+    }
+  }
+  const double diagonal = BoundingBoxDiagonal(mesh.Vertices);
+  if (ids.size() < 2 || !(diagonal > 0.0) || !std::isfinite(diagonal))
+  {
+    return found;
+  }
+  // The boundary points welded within the radius (a fraction of the diagonal of the mesh's box):
+  // each later copy against the first copy of its group, unless an edge joins them.
+  double box[6];
+  for (int d = 0; d < 3; ++d)
+  {
+    box[2 * d] = mesh.Vertices.col(d).minCoeff();
+    box[2 * d + 1] = mesh.Vertices.col(d).maxCoeff();
+  }
+  const Welding near =
+    WeldPoints(xyz.data(), static_cast<long long>(ids.size()), box, radius / diagonal);
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    const auto first = static_cast<std::size_t>(near.First[static_cast<std::size_t>(near.Map[k])]);
+    const std::pair<int, int> edge = { std::min(ids[k], ids[first]), std::max(ids[k], ids[first]) };
+    if (first == k || std::binary_search(edges.begin(), edges.end(), edge))
+    {
+      continue;
+    }
+    ++found.Pairs;
+    const double gap = (mesh.Vertices.row(ids[k]) - mesh.Vertices.row(ids[first])).norm();
+    found.LargestGap = std::max(found.LargestGap, gap / diagonal);
+  }
+  return found;
 }
 } // namespace spectral

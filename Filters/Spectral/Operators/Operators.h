@@ -67,6 +67,13 @@ void CheckCoordinates(const Points& points, Eigen::Index id);
 constexpr double DegenerateCellSize = 1e-12;
 
 /**
+ * Whether triangle f of `mesh` is degenerate by DegenerateCellSize: the rule PrepareMesh leaves
+ * triangles out by, for callers that count something on the triangles it keeps.
+ * \param f A row of mesh.Faces whose indices lie in [0, #V).
+ */
+bool IsDegenerateTriangle(const TriangleMesh& mesh, int f);
+
+/**
  * Keep the triangles (tetrahedra) of non-zero area (volume), once each, and the points they use.
  *
  * Degenerate cells (DegenerateCellSize) carry no stiffness and no mass, so they are left out
@@ -193,6 +200,32 @@ double EdgeCount(const TriangleMesh& mesh);
 
 /// Mean edge length over all cell edges (each edge counted once per cell). 0 for no cells.
 double MeanEdgeLength(const TriangleMesh& mesh);
+
+/**
+ * Two boundary points of a surface closer than this fraction of its mean edge length
+ * (MeanEdgeLength), and not joined by an edge, look like the two copies of one seam point that
+ * welding (Common/Seams.h) left apart, their gap above SeamTolerance: FindOpenSeams.
+ */
+constexpr double OpenSeamGap = 0.01;
+
+/// What FindOpenSeams found.
+struct OpenSeams
+{
+  /// Pairs of such points (a point with several such partners counts once).
+  long long Pairs = 0;
+  /// The largest gap of those pairs, as a fraction of the bounding box diagonal of the finite
+  /// points: a SeamTolerance above it welds them.
+  double LargestGap = 0.0;
+};
+
+/**
+ * The boundary points of the surface `mesh` (on an edge of a single triangle) that lie within
+ * OpenSeamGap times its mean edge length of another boundary point they share no edge with: a
+ * seam left open, which makes the harmonics those of a surface cut there. Triangles with an
+ * index out of range are skipped; a mesh without triangles, or with a non-finite point on one,
+ * has none.
+ */
+OpenSeams FindOpenSeams(const TriangleMesh& mesh);
 } // namespace spectral
 
 #endif

@@ -6,7 +6,8 @@
 //   next request runs whole;
 // - the output has the input's type, the table port a vtkTable;
 // - NumberOfThreads is every filter's, 0 by default; PrintSelf prints the values (enumerated
-//   ones by their names).
+//   ones by their names);
+// - a setting set to NaN is refused with an error when the filter runs.
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
@@ -29,6 +30,7 @@
 #include "ManifoldHarmonicsTestUtilities.h"
 
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -234,6 +236,69 @@ bool SharedSettingsAndPrintSelf()
   return ok;
 }
 
+//------------------------------------------------------------------------------
+// A setting set to NaN (which vtkSetClampMacro lets through) makes the request fail with an error
+// that names it, and every port empty: never a run with a NaN tolerance, limit or cutoff.
+bool NotANumberRefused()
+{
+  vtkSmartPointer<vtkPolyData> good = SphereWithCoefficients();
+  vtkSmartPointer<vtkPolyData> bare = ManifoldHarmonicsTest::UnitSphere(16, 12);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Setting
+  {
+    std::string Name;
+    std::function<void(vtkManifoldHarmonicsAlgorithm*)> Set;
+  };
+  const auto basis = [](vtkManifoldHarmonicsAlgorithm* f)
+  { return vtkManifoldHarmonicBasis::SafeDownCast(f); };
+  const auto smoothing = [](vtkManifoldHarmonicsAlgorithm* f)
+  { return vtkManifoldHarmonicSmoothing::SafeDownCast(f); };
+  const std::vector<std::pair<std::string, std::vector<Setting>>> cases = {
+    { "vtkManifoldHarmonicBasis",
+      { { "Tolerance", [&](vtkManifoldHarmonicsAlgorithm* f) { basis(f)->SetTolerance(nan); } },
+        { "SeamTolerance",
+          [&](vtkManifoldHarmonicsAlgorithm* f) { basis(f)->SetSeamTolerance(nan); } },
+        { "MemoryLimit",
+          [&](vtkManifoldHarmonicsAlgorithm* f) { basis(f)->SetMemoryLimit(nan); } } } },
+    { "vtkManifoldHarmonicSmoothing",
+      { { "CutoffFraction",
+          [&](vtkManifoldHarmonicsAlgorithm* f) { smoothing(f)->SetCutoffFraction(nan); } },
+        { "SeamTolerance",
+          [&](vtkManifoldHarmonicsAlgorithm* f) { smoothing(f)->SetSeamTolerance(nan); } },
+        { "MemoryLimit",
+          [&](vtkManifoldHarmonicsAlgorithm* f) { smoothing(f)->SetMemoryLimit(nan); } } } },
+  };
+  bool ok = true;
+  for (const auto& filterCase : cases)
+  {
+    for (const Setting& setting : filterCase.second)
+    {
+      vtkSmartPointer<vtkManifoldHarmonicsAlgorithm> filter;
+      for (const auto& candidate : AllFilters())
+      {
+        filter = filterCase.first == candidate->GetClassName() ? candidate : filter;
+      }
+      const std::string what = filterCase.first + " with " + setting.Name + " NaN";
+      if (auto* smooth = smoothing(filter))
+      {
+        smooth->SetNumberOfHarmonics(12);
+      }
+      filter->SetInputDataObject(
+        filterCase.first == "vtkManifoldHarmonicBasis" ? static_cast<vtkDataObject*>(bare) : good);
+      ok &= Check(Run(filter) && !OutputsEmpty(filter), what + ": runs before it is set");
+      vtkNew<vtkTest::ErrorObserver> errors;
+      filter->AddObserver(vtkCommand::ErrorEvent, errors);
+      vtkNew<vtkTest::ErrorObserver> executiveErrors;
+      filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+      setting.Set(filter);
+      const bool succeeded = Run(filter);
+      ok &= Check(!succeeded && errors->CheckErrorMessage(setting.Name + " is NaN") == 0,
+        what + ": no error naming it");
+      ok &= Check(OutputsEmpty(filter), what + ": an output port is not empty");
+    }
+  }
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -246,5 +311,6 @@ int TestFilterContract(int argc, char* argv[])
       { "AbortsEmptyEveryPort", AbortsEmptyEveryPort },
       { "OutputLikeInput", OutputLikeInput },
       { "SharedSettingsAndPrintSelf", SharedSettingsAndPrintSelf },
+      { "NotANumberRefused", NotANumberRefused },
     });
 }

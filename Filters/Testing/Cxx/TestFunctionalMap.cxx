@@ -850,6 +850,12 @@ bool TestErrors()
   map->SetFinalSize(Harmonics + 1);
   ok &= FailsWith(map, "Functional map failed");
   map->SetFinalSize(0);
+  // NaN settings, which vtkSetClampMacro lets through, are refused by name.
+  map->SetDescriptorWeight(std::nan(""));
+  map->SetMemoryLimit(std::nan(""));
+  ok &= FailsWith(map, "MemoryLimit, DescriptorWeight are NaN");
+  map->SetDescriptorWeight(1.0);
+  map->SetMemoryLimit(0.0);
   {
     // An internal basis's error is this filter's one error, naming the input.
     const Sheet broken = Target();

@@ -3,7 +3,7 @@
 // Checks that vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing say what they did with
 // their input: points without cells solved as a point cloud (with the point count and
 // NumberOfNeighbors), vertex and line cells left out beside a surface, and edges that more than
-// two triangles share (non-manifold).
+// two of the triangles kept share (non-manifold).
 
 #include "vtkManifoldHarmonicBasis.h"
 
@@ -163,6 +163,41 @@ bool TestNonManifoldEdges()
     "a book of three pages");
   return ok;
 }
+
+//------------------------------------------------------------------------------
+// A sphere with one more triangle on an edge (a, b) of it, whose third point is the midpoint of
+// a and b: zero area, left out with its own warning, so the edge has two triangles, as on the
+// sphere alone, and no non-manifold edge is reported.
+bool TestDegenerateTriangleOnAnEdge()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(12);
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION); // the midpoint on the chord
+  sphere->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(sphere->GetOutput());
+  vtkIdType count = 0;
+  const vtkIdType* ids = nullptr;
+  mesh->GetPolys()->GetCellAtId(mesh->GetNumberOfCells() / 2, count, ids);
+  const vtkIdType a = ids[0];
+  const vtkIdType b = ids[1];
+  double pa[3], pb[3];
+  mesh->GetPoint(a, pa);
+  mesh->GetPoint(b, pb);
+  const vtkIdType middle = mesh->GetPoints()->InsertNextPoint(
+    0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]));
+  mesh->GetPolys()->InsertNextCell({ a, b, middle });
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetNumberOfHarmonics(10);
+  std::string warnings;
+  const std::string what = "a zero-area triangle on an edge of a sphere";
+  bool ok = Check(Warnings(basis, mesh, warnings), what + ": the basis failed");
+  ok &= Contains(warnings, "Left out 1 degenerate (zero-area) triangles", what);
+  ok &= Check(
+    warnings.find("non-manifold") == std::string::npos, what + ": an edge reported non-manifold");
+  return ok;
+}
 } // anonymous namespace
 
 //------------------------------------------------------------------------------
@@ -174,5 +209,6 @@ int TestInputInterpretation(int argc, char* argv[])
       { "PointsWithoutCells", TestPointsWithoutCells },
       { "VerticesAndLinesLeftOut", TestVerticesAndLinesLeftOut },
       { "NonManifoldEdges", TestNonManifoldEdges },
+      { "DegenerateTriangleOnAnEdge", TestDegenerateTriangleOnAnEdge },
     });
 }

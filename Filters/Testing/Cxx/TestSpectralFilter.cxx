@@ -1294,6 +1294,11 @@ bool TestCutoffsOutsideTheSpectrum()
   ok &= warns({ "Cutoff 1.5", Printed(1.5 * highest),
                 "above the highest computed frequency " + Printed(highest) },
     "low pass above the highest computed frequency");
+  // As a harmonic index beyond the last harmonic (19 of 20).
+  run.Filter->SetCutoffUnitsToHarmonicIndex();
+  run.Filter->SetCutoff(25);
+  ok &= warns(
+    { "Cutoff 25", "beyond the last computed harmonic, 19" }, "low pass beyond the last harmonic");
   run.Filter->SetCutoffUnitsToAbsoluteFrequency();
   run.Filter->SetFilterKindToBandPass();
   run.Filter->SetCutoff(0.5 * (first + highest));
@@ -1329,6 +1334,35 @@ bool TestCutoffsOutsideTheSpectrum()
   ok &= Check(succeeded &&
       constant.Messages->GetWarningMessage().find("no non-constant harmonic") != std::string::npos,
     "a basis of constant harmonics only does not warn");
+  // What the warning says the default low pass does: the points of each of the 10 triangles
+  // with a harmonic go to its centroid; the 30 others, which the basis left out, stay.
+  ok &= Check(
+    constant.Messages->GetWarningMessage().find(
+      "the points of each component with a harmonic move to its centroid") != std::string::npos,
+    "the warning does not say that the points move to their component's centroid");
+  vtkPointSet* collapsed = vtkPointSet::SafeDownCast(constant.Filter->GetOutput());
+  int atCentroid = 0;
+  int stayed = 0;
+  for (vtkIdType t = 0; succeeded && t < 40; ++t)
+  {
+    const double x = 2.0 * static_cast<double>(t);
+    const double centroid[3] = { x + 1.0 / 3.0, 1.0 / 3.0, 0.0 };
+    double toCentroid = 0.0;
+    double moved = 0.0;
+    for (vtkIdType c = 0; c < 3; ++c)
+    {
+      double p[3], q[3];
+      collapsed->GetPoint(3 * t + c, p);
+      points->GetPoint(3 * t + c, q);
+      toCentroid = std::max(toCentroid, std::sqrt(vtkMath::Distance2BetweenPoints(p, centroid)));
+      moved = std::max(moved, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
+    }
+    atCentroid += toCentroid < 1e-5 ? 1 : 0; // float points
+    stayed += moved == 0.0 ? 1 : 0;
+  }
+  ok &= Check(atCentroid == 10 && stayed == 30,
+    std::to_string(atCentroid) + " triangles went to their centroid (not 10), " +
+      std::to_string(stayed) + " stayed (not 30)");
 
   // Rounding-sized eigenvalues (set by hand: what a machine may return for the zero ones) that
   // a tiny cutoff splits: the components of the harmonics above it would go to the origin.

@@ -413,9 +413,23 @@ bool TestTolerance(vtkPolyData* sphereBasis,
   bool ok = TestSpectrum(sphereBasis, Basis(moved, true, &warnings, 1e-4));
   ok &= Check(warnings.find("connected components") == std::string::npos,
     "copies 0.5e-4 of the diagonal apart are one point with SeamTolerance 1e-4: " + warnings);
+  ok &= Check(warnings.find("seams left open") == std::string::npos,
+    "welded copies are reported as open seams: " + warnings);
   Basis(moved, true, &warnings);
   ok &= Check(warnings.find("connected components") != std::string::npos,
     "copies 0.5e-4 of the diagonal apart stay apart with the default SeamTolerance");
+  // They are reported as seams left open, with a tolerance that welds them.
+  const std::string above = "raise SeamTolerance above ";
+  const std::size_t at = warnings.find(above);
+  ok &= Check(warnings.find("seams left open") != std::string::npos && at != std::string::npos,
+    "copies 0.5e-4 of the diagonal apart are not reported as seams left open: " + warnings);
+  if (at != std::string::npos)
+  {
+    const double gap = std::stod(warnings.substr(at + above.size()));
+    ok &=
+      Check(gap > 0.25e-4 && gap < 0.51e-4, "the largest gap reported is " + std::to_string(gap));
+    ok &= TestSpectrum(sphereBasis, Basis(moved, true, &warnings, 1.01 * gap));
+  }
   return ok;
 }
 
@@ -440,6 +454,8 @@ bool TestKeepSeamsOpen(vtkPolyData* soup)
     "WeldSeams off: a warning names the " + components);
   ok &= Check(!open->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
     "WeldSeams off: no point is flagged a duplicate");
+  ok &= Check(warnings.find("seams left open") == std::string::npos,
+    "WeldSeams off: seams kept open on purpose are reported: " + warnings);
   return ok;
 }
 
