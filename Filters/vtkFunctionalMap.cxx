@@ -27,6 +27,7 @@
 
 #include "Spectral/Common/Monitor.h"
 #include "Spectral/Filtering/FunctionalMap.h"
+#include "Spectral/Operators/Operators.h"
 
 #include <algorithm>
 #include <limits>
@@ -264,6 +265,17 @@ vtkSmartPointer<vtkAbstractArray> ThroughMap(vtkAbstractArray* array,
     spectral::TransferThroughMap(source, target, result.Map, signal.View());
   for (std::size_t j = 0; j < result.CorrespondingPointIds.size(); ++j)
   {
+    if (result.CorrespondingPointIds[j] >= 0 &&
+      !values.row(static_cast<Eigen::Index>(j)).allFinite())
+    {
+      // One NaN or infinity on the source's surface spreads over all its coefficients.
+      throw spectral::InvalidInput(vtkManifoldHarmonicsArrays::NotFiniteOnSurface(array->GetName(),
+        "its transfer through the functional map",
+        "Transfer it as a label (LabelArrays) or leave it out (TransferArrays off)"));
+    }
+  }
+  for (std::size_t j = 0; j < result.CorrespondingPointIds.size(); ++j)
+  {
     if (result.CorrespondingPointIds[j] < 0)
     {
       values.row(static_cast<Eigen::Index>(j)).setConstant(std::numeric_limits<double>::quiet_NaN());
@@ -386,12 +398,9 @@ vtkDataObject* vtkFunctionalMap::GetSource()
 //------------------------------------------------------------------------------
 int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable* table)
 {
+  // (The weights, NaN or not, are checked by the core: ComputeFunctionalMap.)
   const std::string nan =
-    vtkManifoldHarmonicsParameters::NotANumber({ { "MemoryLimit", this->MemoryLimit },
-      { "DescriptorWeight", this->DescriptorWeight },
-      { "CommutativityWeight", this->CommutativityWeight },
-      { "LandmarkWeight", this->LandmarkWeight },
-      { "OrientationWeight", this->OrientationWeight } });
+    vtkManifoldHarmonicsParameters::NotANumber({ { "MemoryLimit", this->MemoryLimit } });
   if (!nan.empty())
   {
     vtkErrorMacro(<< nan);
@@ -435,6 +444,20 @@ int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable
   }
   const spectral::SpectralShape sourceShape = ShapeOf(withBasis[1], RoleOfPort[1]);
   const spectral::SpectralShape targetShape = ShapeOf(withBasis[0], RoleOfPort[0]);
+  for (int port = 0; this->OrientationTerm && port < 2; ++port)
+  {
+    const long long conflicts =
+      spectral::OrientationConflicts((port == 0 ? targetShape : sourceShape).Faces);
+    if (conflicts > 0)
+    {
+      vtkWarningMacro(<< "OrientationTerm: " << conflicts << " edges of the " << RoleOfPort[port]
+                      << " have their two triangles oriented alike (triangles turned over, or a "
+                         "surface that cannot be oriented), and the term compares orientations: "
+                         "the map may be wrong. Orient the triangles consistently first "
+                         "(Generate Surface Normals in ParaView, vtkPolyDataNormals, with "
+                         "Consistency on), or turn OrientationTerm off.");
+    }
+  }
   options.InitialSize = this->InitialSize;
   options.FinalSize = this->FinalSize;
   options.ZoomOutStep = this->ZoomOutStep;
@@ -474,6 +497,12 @@ int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable
   FillMapTable(table, result.Map);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkFunctionalMap::GetMapOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
 }
 
 //------------------------------------------------------------------------------

@@ -60,11 +60,14 @@
  * input, but one operator per tenth descriptor to build, O(F k^2) each for F triangles, and the
  * initial map becomes one dense system of k^2 unknowns, O(k^6): about 0.1 s at k = 30, a few
  * seconds at the limit InitialSize <= 60 (more is an error); it needs consistently oriented
- * triangles on both inputs, and keeps the orientation they give: turn the target's triangles
- * over to ask for the mirror map; the refinement is unchanged).
+ * triangles on both inputs (a warning counts the edges whose two triangles are oriented alike,
+ * spectral::OrientationConflicts), and keeps the orientation they give: turn the target's
+ * triangles over to ask for the mirror map; the refinement is unchanged).
  *
- * Errors (vtkErrorMacro, both outputs empty): a missing or empty input, an input without
- * triangles or basis arrays, an internal basis that fails (its error becomes this filter's one
+ * Errors (vtkErrorMacro, both outputs empty): a missing or empty input (points without cells
+ * are a point cloud, as for vtkManifoldHarmonicBasis), a weight that is negative, infinite or
+ * NaN, NaN or infinity in an array transferred through the functional map at a point of the
+ * source's surface, an internal basis that fails (its error becomes this filter's one
  * message, naming the input; its warnings become this filter's), inconsistent basis arrays,
  * sizes larger than a basis, OrientationTerm with InitialSize above 60, landmark lists
  * of different lengths or with ids out of range, an array named in both SmoothArrays and
@@ -95,6 +98,7 @@
 class vtkAlgorithmOutput;
 class vtkDataObject;
 class vtkIdList;
+class vtkTable;
 
 class VTKMANIFOLDHARMONICS_EXPORT vtkFunctionalMap : public vtkManifoldHarmonicsAlgorithm
 {
@@ -106,6 +110,11 @@ public:
   static vtkFunctionalMap* New();
   vtkTypeMacro(vtkFunctionalMap, vtkManifoldHarmonicsAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The table of the map C on output port 1 (GetOutput() is port 0's point set).
+   */
+  vtkTable* GetMapOutput();
   ///@}
 
   ///@{
@@ -206,17 +215,19 @@ public:
    * The weights of the terms of the initial estimate: descriptor preservation (default 1, must
    * be above 0), commutativity with the Laplacians (default 0.1,
    * spectral::DefaultCommutativityWeight), landmarks relative to the other descriptors (default 1,
-   * spectral::DefaultLandmarkWeight) and orientation (default 1,
+   * spectral::DefaultLandmarkWeight) and orientation (default 0.1,
    * spectral::DefaultOrientationWeight, used with OrientationTerm). Each
-   * term is divided by its own scale, so the weights are free of units. Range [0, inf).
+   * term is divided by its own scale, so the weights are free of units. Range [0, inf): a
+   * negative, infinite or NaN weight is an error when the filter runs (not clamped, which would
+   * turn an infinite weight into a huge finite one).
    */
-  vtkSetClampMacro(DescriptorWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(DescriptorWeight, double);
   vtkGetMacro(DescriptorWeight, double);
-  vtkSetClampMacro(CommutativityWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(CommutativityWeight, double);
   vtkGetMacro(CommutativityWeight, double);
-  vtkSetClampMacro(LandmarkWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(LandmarkWeight, double);
   vtkGetMacro(LandmarkWeight, double);
-  vtkSetClampMacro(OrientationWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(OrientationWeight, double);
   vtkGetMacro(OrientationWeight, double);
   ///@}
 

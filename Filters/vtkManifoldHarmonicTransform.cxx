@@ -104,9 +104,8 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
     if (!coefficients.back().Values.allFinite())
     {
       // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
-      return "The point-data array '" + signals[s].first +
-        "' holds values that are not finite (NaN or infinity) at points of the surface: "
-        "its transform is undefined. Deselect the array, or replace those values first.";
+      return vtkManifoldHarmonicsArrays::NotFiniteOnSurface(
+        signals[s].first, "its transform", "Deselect the array");
     }
     self->UpdateProgress(static_cast<double>(s + 1) / static_cast<double>(signals.size()));
   }

@@ -387,6 +387,14 @@ std::string MissingBasisAdvice(vtkDataSet* input)
 }
 
 //------------------------------------------------------------------------------
+std::string NotFiniteOnSurface(const std::string& name, const char* what, const char* remedy)
+{
+  return "The point-data array '" + name +
+    "' holds values that are not finite (NaN or infinity) at points of the surface: " + what +
+    " is undefined. " + remedy + ", or replace those values first.";
+}
+
+//------------------------------------------------------------------------------
 bool CoreMesh::IsPointCloud() const
 {
   return this->Mesh.Vertices.rows() > 0 && !this->HasCells() && this->LineCells == 0 &&

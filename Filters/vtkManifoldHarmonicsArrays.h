@@ -140,6 +140,13 @@ bool IsSpectrumOnly(vtkDataSet* input);
 std::string MissingBasisAdvice(vtkDataSet* input);
 
 /**
+ * The error of the point-data array `name` whose values are not finite (NaN or infinity) at
+ * points of the surface, which makes `what` ("its transform") undefined, with `remedy` ("Deselect
+ * the array"): the transform's and the functional map's one text.
+ */
+std::string NotFiniteOnSurface(const std::string& name, const char* what, const char* remedy);
+
+/**
  * The cells of any vtkPointSet in the core's form (spectral::TriangleMesh), with what the
  * conversion did to them. Every point of the input is a point of the mesh; ghost cells are
  * left out (the rule of vtkManifoldHarmonicsGhosts.h).

@@ -187,10 +187,19 @@ vtkIdType FindSource(vtkSpectralDescriptors* self, vtkPointSet* input, const spe
   return source;
 }
 
-/// The parameters that the setters cannot refuse: negative times. \return An error or "".
-std::string CheckTimes(vtkSpectralDescriptors* self)
+/// The parameters that the setters cannot refuse: negative times, a source location that is not
+/// a point. \return An error or "".
+std::string CheckSettings(vtkSpectralDescriptors* self)
 {
   std::ostringstream problem;
+  const double* location = self->GetSourceLocation();
+  if (self->GetComputeSpectralDistance() && self->GetUseSourceLocation() &&
+    !(std::isfinite(location[0]) && std::isfinite(location[1]) && std::isfinite(location[2])))
+  {
+    problem << "SourceLocation (" << location[0] << ", " << location[1] << ", " << location[2]
+            << ") is not a finite point.";
+    return problem.str();
+  }
   for (int j = 0; j < self->GetNumberOfHeatKernelTimes(); ++j)
   {
     if (!(self->GetHeatKernelTime(j) >= 0.0 && std::isfinite(self->GetHeatKernelTime(j))))
@@ -596,7 +605,7 @@ int vtkSpectralDescriptors::Execute(vtkPointSet* input, vtkPointSet* output, vtk
   }
   vtkManifoldHarmonicsArrays::Basis basis;
   std::string problem = vtkManifoldHarmonicsArrays::FindBasis(input, basis);
-  problem = problem.empty() ? CheckTimes(this) : problem;
+  problem = problem.empty() ? CheckSettings(this) : problem;
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);

@@ -802,4 +802,32 @@ OpenSeams FindOpenSeams(const TriangleMesh& mesh)
   }
   return found;
 }
+
+//------------------------------------------------------------------------------
+long long OrientationConflicts(const Triangles& faces)
+{
+  std::vector<std::pair<int, int>> directed;
+  directed.reserve(static_cast<std::size_t>(3 * faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int a = faces(f, c);
+      const int b = faces(f, (c + 1) % 3);
+      if (a != b && a >= 0 && b >= 0)
+      {
+        directed.emplace_back(a, b);
+      }
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  long long conflicts = 0;
+  for (std::size_t i = 1; i < directed.size(); ++i)
+  {
+    // Each edge once, however many triangles repeat its direction.
+    conflicts +=
+      directed[i] == directed[i - 1] && (i < 2 || directed[i - 2] != directed[i]) ? 1 : 0;
+  }
+  return conflicts;
+}
 } // namespace spectral

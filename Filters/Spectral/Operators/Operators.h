@@ -226,6 +226,14 @@ struct OpenSeams
  * has none.
  */
 OpenSeams FindOpenSeams(const TriangleMesh& mesh);
+
+/**
+ * The number of edges that two triangles of `faces` traverse in the same direction (a, b): none
+ * on a consistently oriented surface; at least one on a non-orientable one (a Moebius strip)
+ * and where triangles were flipped. Edges of a single triangle, repeated corners and negative
+ * ids are ignored.
+ */
+long long OrientationConflicts(const Triangles& faces);
 } // namespace spectral
 
 #endif

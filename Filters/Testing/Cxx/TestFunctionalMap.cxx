@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -425,6 +426,18 @@ bool TestOrientationTerm()
             << ", target turned over " << mirrored << std::endl;
   bool ok = Check(kept < 0.03, "the orientation term keeps the map within 3% of the diameter");
   ok &= Check(mirrored > 2 * kept, "turned-over triangles ask for another orientation");
+  // Every other triangle of the target turned back: neighbours oriented alike, a warning.
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); c += 2)
+  {
+    polys->ReverseCellAtId(c);
+  }
+  target.Mesh->Modified();
+  ManifoldHarmonicsTest::Messages messages(map);
+  map->Update();
+  ok &= Check(messages->GetWarningMessage().find(
+                "edges of the target (input port 0, Input) have their two triangles oriented "
+                "alike") != std::string::npos,
+    "inconsistently oriented target triangles give no warning: " + messages->GetWarningMessage());
   return ok;
 }
 
@@ -627,8 +640,9 @@ bool TestTable()
   map->SetInputData(targetBasis->GetOutput());
   map->SetSourceData(withHarmonic);
   map->Update();
-  vtkTable* table = vtkTable::SafeDownCast(map->GetOutputDataObject(1));
-  bool ok = Check(table->GetNumberOfColumns() == Harmonics && table->GetNumberOfRows() == Harmonics,
+  vtkTable* table = map->GetMapOutput();
+  bool ok = Check(table == map->GetOutputDataObject(1), "GetMapOutput is output port 1");
+  ok &= Check(table->GetNumberOfColumns() == Harmonics && table->GetNumberOfRows() == Harmonics,
     "the table is k x k (k the final size)");
   ok &= Check(table->GetColumnByName("SourceHarmonic_0") &&
       table->GetColumnByName(("SourceHarmonic_" + std::to_string(Harmonics - 1)).c_str()),
@@ -850,12 +864,27 @@ bool TestErrors()
   map->SetFinalSize(Harmonics + 1);
   ok &= FailsWith(map, "Functional map failed");
   map->SetFinalSize(0);
-  // NaN settings, which vtkSetClampMacro lets through, are refused by name.
-  map->SetDescriptorWeight(std::nan(""));
+  // NaN, which vtkSetClampMacro lets through, is refused by name; a weight that is NaN, infinite
+  // (not clamped to a huge finite one, which collapsed the map onto one point) or negative is
+  // refused too.
   map->SetMemoryLimit(std::nan(""));
-  ok &= FailsWith(map, "MemoryLimit, DescriptorWeight are NaN");
-  map->SetDescriptorWeight(1.0);
+  ok &= FailsWith(map, "MemoryLimit is NaN");
   map->SetMemoryLimit(0.0);
+  for (const double weight : { std::nan(""), std::numeric_limits<double>::infinity(), -1.0 })
+  {
+    map->SetCommutativityWeight(weight);
+    ok &= FailsWith(map, "the weights of a functional map must be finite and non-negative");
+  }
+  map->SetCommutativityWeight(0.1);
+  {
+    // A NaN of the smooth source array Field on a point of the surface would spread over all
+    // its coefficients, so over the whole transferred array: an error naming it.
+    const Sheet nanSource = Source();
+    vtkDataArray* field = nanSource.Mesh->GetPointData()->GetArray("Field");
+    field->SetComponent(3, 0, std::nan(""));
+    auto failing = MapOf(nanSource.Mesh, target.Mesh);
+    ok &= FailsWith(failing, "The point-data array 'Field' holds values that are not finite");
+  }
   {
     // An internal basis's error is this filter's one error, naming the input.
     const Sheet broken = Target();

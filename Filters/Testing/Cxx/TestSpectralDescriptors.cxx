@@ -378,6 +378,15 @@ bool TestErrors()
     filter->SetDiffusionTime(-0.1);
     ok &= ExpectError(filter, input, "DiffusionTime");
   }
+  {
+    // NaN, not a point: an error naming SourceLocation (it said "Source point -1 is used by no
+    // triangle").
+    vtkNew<vtkSpectralDescriptors> filter;
+    filter->ComputeSpectralDistanceOn();
+    filter->UseSourceLocationOn();
+    filter->SetSourceLocation(std::nan(""), 0.0, 0.0);
+    ok &= ExpectError(filter, input, "SourceLocation (nan, 0, 0) is not a finite point");
+  }
   return ok;
 }
 
