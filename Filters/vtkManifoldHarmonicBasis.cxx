@@ -350,7 +350,8 @@ std::string MemoryProblem(vtkManifoldHarmonicBasis* self,
     message << ", set BasisPrecision to Float (saves " << spectral::ByteCount(need.Basis / 2)
             << ")";
   }
-  if (self->GetBandSize() > 0)
+  // Only where the automatic bands could be smaller than the ones asked for.
+  if (self->GetBandSize() > spectral::SmallestPlannedBand)
   {
     message << ", set BandSize to 0 (automatic: bands as small as " << spectral::SmallestPlannedBand
             << " eigenpairs where the memory needs it; now " << self->GetBandSize() << ")";
@@ -854,6 +855,19 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
   vtkPointSet* output,
   vtkTable* vtkNotUsed(table))
 {
+  const int status = this->ChooseAndRun(input, output);
+  if (status == 0 || this->AbortRequested())
+  {
+    // No harmonics were computed: nothing was kept anywhere.
+    this->StorageUsed = AUTOMATIC;
+    this->StorageReason.clear();
+  }
+  return status;
+}
+
+//------------------------------------------------------------------------------
+int vtkManifoldHarmonicBasis::ChooseAndRun(vtkPointSet* input, vtkPointSet* output)
+{
   const std::string nan =
     vtkManifoldHarmonicsParameters::NotANumber({ { "Tolerance", this->Tolerance },
       { "SeamTolerance", this->SeamTolerance },
@@ -1005,6 +1019,15 @@ int vtkManifoldHarmonicBasis::ComputeSlepcBasis(vtkPointSet* input, vtkPointSet*
   }
 #ifdef MANIFOLDHARMONICS_HAS_SLEPC
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (this->MemoryLimit > 0.0 && (!controller || controller->GetLocalProcessId() == 0))
+  {
+    vtkWarningMacro(<< "MemoryLimit " << this->MemoryLimit
+                    << " MiB does not apply to the SLEPc solver, which checks no memory estimate "
+                       "(each process holds the rows of its own points and its share of the "
+                       "matrices and factors).");
+  }
+  this->StorageUsed = IN_MEMORY;
+  this->StorageReason = "in memory: each process keeps the rows of its own points (SLEPc solver)";
   const vtkManifoldHarmonicsArrays::CoreMesh cells = vtkManifoldHarmonicsArrays::ToCoreMesh(input);
   for (const std::string& warning : cells.Warnings())
   {
@@ -1241,7 +1264,10 @@ void vtkManifoldHarmonicBasis::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "EigenvaluesOnly: " << onOff(this->EigenvaluesOnly) << "\n";
   os << indent << "FrequencyWindow: [" << this->FrequencyWindow[0] << ", "
-     << this->FrequencyWindow[1] << ")" << (this->FrequencyWindow[1] > 0.0 ? "\n" : " (off)\n");
+     << this->FrequencyWindow[1] << ")"
+     << (spectral::IsFrequencyWindow(this->FrequencyWindow[0], this->FrequencyWindow[1])
+            ? "\n"
+            : " (off)\n");
   os << indent << "Solver: " << Enums::Name(Enums::Solver, this->Solver) << "\n";
   os << indent << "SlepcPartitions: " << this->SlepcPartitions << "\n";
   os << indent << "SlepcOptions: \"" << this->SlepcOptions << "\"\n";

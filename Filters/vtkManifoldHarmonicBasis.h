@@ -347,7 +347,8 @@ public:
    * Filters/Spectral/Solver/Memory.h fits in MemoryLimit (or the available memory), else a file
    * when the solve alone fits and the file's disk has room (statvfs; twice the basis while it
    * is written, spectral::BasisFileDiskBytes), else an error naming what would make it run;
-   * a named BasisFileName always means a file. GetStorageUsed() and
+   * a named BasisFileName means a file with AUTOMATIC (with IN_MEMORY or EigenvaluesOnly it is
+   * not used, and a warning says so). GetStorageUsed() and
    * GetStorageReason() say what was chosen and why (a warning too when AUTOMATIC chose a file).
    * Serial runs of the Built-in solver only: FILE or a BasisFileName in a distributed run or
    * with the SLEPc solver is an error. The one declaration of these values.
@@ -442,11 +443,12 @@ public:
 
   ///@{
   /**
-   * A frequency window [lower, upper) in the units of the mesh: when upper > 0, the harmonics
+   * A frequency window [lower, upper) in the units of the mesh: unless both are 0, the harmonics
    * whose frequency omega = sqrt(lambda) lies in it are computed instead of the
    * NumberOfHarmonics smallest. Two inertia counts prove how many there are (none missing); the
-   * solver's bands start at the lower end, so the harmonics below it are not computed. An empty
-   * window, or one without an eigenvalue, is an error.
+   * solver's bands start at the lower end, so the harmonics below it are not computed. A window
+   * that is not 0 <= lower < upper < infinity (NaN included), or one without an eigenvalue, is an
+   * error.
    * Default is (0, 0): off.
    */
   vtkSetVector2Macro(FrequencyWindow, double);
@@ -475,10 +477,10 @@ public:
    * any vtkPointSet; point clouds are refused). It supports the COTANGENT Laplacian, both mass
    * matrices, NumberOfHarmonics, Tolerance and MaxIterations (Krylov-Schur's);
    * MinimumComponentSize, EigenvaluesOnly, FrequencyWindow and the DIRICHLET
-   * BoundaryCondition are refused with an error, and BandSize, MemoryLimit
-   * and NumberOfThreads (the built-in solver's) do not apply. Its results equal the
-   * built-in solver's to round-off: the eigenvalues, the spanned subspaces, the filtered points
-   * (Testing/ParaView/TestSlepcManifoldHarmonics.py.in, at 1, 2 and 3 processes). The output
+   * BoundaryCondition are refused with an error, and BandSize, MemoryLimit (a warning says so)
+   * and NumberOfThreads (the built-in solver's) do not apply; StorageUsed is IN_MEMORY. Its results
+   * equal the built-in solver's to round-off: the eigenvalues, the spanned subspaces, the filtered
+   * points (Testing/ParaView/TestSlepcManifoldHarmonics.py.in, at 1, 2 and 3 processes). The output
    * has the same arrays, and in field data also ManifoldHarmonicsInertiaCount (eigenvalues
    * SLEPc's interval holds, counted by the inertia of a MUMPS factorization) and
    * ManifoldHarmonicsOrthonormalityError. Default is BUILT_IN.
@@ -569,6 +571,8 @@ protected:
    */
   int ComputeBasis(vtkPointSet* input, vtkPointSet* output, bool weld);
 
+  /// Execute but for the storage report, which Execute resets where no harmonics were computed.
+  int ChooseAndRun(vtkPointSet* input, vtkPointSet* output);
   /**
    * The SLEPC solver: every process solves with the others on its own piece (collective; a
    * serial run is one process). Errors and cancels alike on every process.

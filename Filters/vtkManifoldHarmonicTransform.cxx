@@ -76,6 +76,24 @@ std::vector<NamedSignal> SelectSignals(vtkManifoldHarmonicTransform* self, vtkPo
   return signals;
 }
 
+/// Whether the harmonics are finite at the points of non-zero mass (those of the surface).
+bool HarmonicsFinite(const vtkManifoldHarmonicsArrays::Basis& basis, const spectral::Vector& mass)
+{
+  const auto m = static_cast<std::size_t>(basis.NumberOfHarmonics);
+  for (vtkIdType i = 0; i < basis.NumberOfPoints; ++i)
+  {
+    for (std::size_t k = 0; mass[i] != 0.0 && k < m; ++k)
+    {
+      const std::size_t at = static_cast<std::size_t>(i) * m + k;
+      if (!std::isfinite(basis.Doubles ? basis.Doubles[at] : static_cast<double>(basis.Floats[at])))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 /// The coefficients of the selected signals summed over the points of this process, which a
 /// ghost array may mark as duplicates of another process's points (those count 0).
 /// \return An error message, empty on success. \throws what the core throws.
@@ -103,7 +121,15 @@ std::string LocalCoefficients(vtkManifoldHarmonicTransform* self,
           basis, mass, signals[s].second, self->GetNumberOfThreads()) });
     if (!coefficients.back().Values.allFinite())
     {
-      // Points used by no triangle add nothing: a NaN or infinity on the surface did this.
+      // The harmonics themselves (a damaged basis file, whose payload has no checksum), or
+      // else the array: points used by no triangle add nothing, so a NaN or infinity on the
+      // surface did this.
+      if (!HarmonicsFinite(basis, mass))
+      {
+        return "The basis holds harmonics that are not finite (NaN or infinity) at points of the "
+               "surface: a damaged basis (a basis file altered after it was written?). Compute "
+               "it again (remove the basis file).";
+      }
       return vtkManifoldHarmonicsArrays::NotFiniteOnSurface(
         signals[s].first, "its transform", "Deselect the array");
     }

@@ -64,6 +64,11 @@ int vtkManifoldHarmonicsAlgorithm::RequestData(vtkInformation* vtkNotUsed(reques
     [this, input, output, table, &status]() { status = this->Execute(input, output, table); });
   const bool aborted = this->CancelRequested || (returned && this->AbortRequested());
   const bool failed = !aborted && (!returned || status == 0);
+  if (aborted)
+  {
+    this->AbortTime.Modified();
+    this->AbortedOutput = outputVector->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT());
+  }
   if (aborted || failed)
   {
     // One rule for every filter: after an error or an abort, every output port is empty.
@@ -77,6 +82,19 @@ int vtkManifoldHarmonicsAlgorithm::RequestData(vtkInformation* vtkNotUsed(reques
     }
   }
   return failed ? 0 : 1;
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkManifoldHarmonicsAlgorithm::GetMTime()
+{
+  // The executive marks the emptied outputs of an aborted request as generated after
+  // RequestData, later than the settings: the next request would find them up to date.
+  if (this->AbortedOutput && this->AbortedOutput->GetUpdateTime() > this->AbortTime.GetMTime())
+  {
+    this->AbortedOutput = nullptr;
+    this->Modified();
+  }
+  return this->Superclass::GetMTime();
 }
 
 //------------------------------------------------------------------------------

@@ -20,7 +20,9 @@
  *   the core's exceptions become messages); after an abort (AbortExecute in a serial run, or the
  *   core's spectral::Cancelled) every output port is empty and the request succeeds, as VTK's
  *   executive has it for an aborted filter. An abort stops the request it was asked in: the next
- *   request starts with AbortExecute cleared (VTK 9.2 leaves it set after an aborted run).
+ *   request starts with AbortExecute cleared (VTK 9.2 leaves it set after an aborted run), and
+ *   runs again, with everything downstream (GetMTime: VTK 9.2's executive keeps the emptied
+ *   outputs as up to date).
  * - A distributed run (several processes, vtkMultiProcessController) finishes its collective
  *   steps on every process: AbortExecute is honoured in serial runs only (AbortRequested).
  * - The core reports progress, steps and warnings, and polls the abort flag, through the
@@ -33,6 +35,8 @@
 
 #include "vtkManifoldHarmonicsModule.h" // For export macro
 #include "vtkPointSetAlgorithm.h"
+#include "vtkTimeStamp.h"   // For the request after an abort
+#include "vtkWeakPointer.h" // For the request after an abort
 
 #include <exception>  // For DescribeFailure
 #include <functional> // For Guard
@@ -66,6 +70,13 @@ public:
    * distributed one, whose collective steps must finish on every process.
    */
   bool AbortRequested();
+
+  /**
+   * The modified time; after an aborted request, once the executive has marked its emptied
+   * outputs as generated, it moves past them (once), so that the next Update runs the filter
+   * again, and the filters downstream, without a change of setting.
+   */
+  vtkMTimeType GetMTime() override;
 
 protected:
   /// The output ports a filter has: the point set alone, or a table on port 1 as well.
@@ -128,6 +139,9 @@ protected:
 private:
   /// Set when the core threw spectral::Cancelled during the request.
   bool CancelRequested;
+  /// When the last request was aborted, and its output port 0 (null once GetMTime moved past it).
+  vtkTimeStamp AbortTime;
+  vtkWeakPointer<vtkDataObject> AbortedOutput;
 
   vtkManifoldHarmonicsAlgorithm(const vtkManifoldHarmonicsAlgorithm&) = delete;
   void operator=(const vtkManifoldHarmonicsAlgorithm&) = delete;

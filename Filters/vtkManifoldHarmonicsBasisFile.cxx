@@ -158,13 +158,25 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
   std::string& reason)
 {
   plan = Plan();
+  const std::string name = self->GetBasisFileName();
   if (options.EigenvaluesOnly)
   {
     used = vtkManifoldHarmonicBasis::AUTOMATIC;
     reason = "no harmonics are kept (EigenvaluesOnly)";
+    if (!name.empty())
+    {
+      vtkWarningWithObjectMacro(self,
+        << "BasisFileName '" << name
+        << "' is not written or read: EigenvaluesOnly keeps no harmonics.");
+    }
     return true;
   }
-  const std::string name = self->GetBasisFileName();
+  if (!name.empty() && self->GetStorage() == vtkManifoldHarmonicBasis::IN_MEMORY)
+  {
+    vtkWarningWithObjectMacro(self,
+      << "BasisFileName '" << name
+      << "' is not written or read: Storage is In Memory. Choose Automatic or File to use it.");
+  }
   plan.Digest = Digest(mesh);
   plan.Options = OptionsText(self);
   int requested = self->GetStorage();
@@ -218,7 +230,9 @@ bool PlanStorage(vtkManifoldHarmonicBasis* self,
     spectral::PlanStreamedMemory(n, n, m, band, volume, spectral::MemoryShare(available, writer))
       .Estimate.Total() +
     writer;
-  const bool streamed = options.UpperFrequency <= 0.0 && streaming <= written;
+  const bool streamed =
+    !spectral::IsFrequencyWindow(options.LowerFrequency, options.UpperFrequency) &&
+    streaming <= written;
   const std::uint64_t inFile = streamed ? streaming : written;
   const std::string path = name.empty() ? TemporaryPath() : name;
   const std::uint64_t fileBytes = spectral::BasisFileDiskBytes(n,

@@ -784,7 +784,7 @@ BasisResult ComputeBasis(const TriangleMesh& mesh,
   const Clock::time_point start = Clock::now();
   BasisResult result;
   const bool streamed = static_cast<bool>(options.Sink.Harmonics);
-  if (streamed && options.UpperFrequency > 0.0)
+  if (streamed && IsFrequencyWindow(options.LowerFrequency, options.UpperFrequency))
   {
     throw InvalidInput("a frequency window is not streamed: compute its basis in memory");
   }

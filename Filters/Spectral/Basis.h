@@ -68,7 +68,7 @@ struct BasisResult;
  * done once), less where the sink wants the lower pairs alone (WantedUpTo): the second solve of
  * each component then stops at its last wanted pair.
  *
- * Not streamed: a frequency window (BasisOptions::UpperFrequency > 0; InvalidInput).
+ * Not streamed: a frequency window (IsFrequencyWindow; InvalidInput).
  */
 struct BasisSink
 {
@@ -123,6 +123,17 @@ struct BasisSink
  */
 constexpr double StreamedClusterGap = 1e-6;
 
+/**
+ * Whether the ends [lower, upper) of BasisOptions (or DistributedOptions) ask for a frequency
+ * window: every setting but the default [0, 0), which is off. A window that is not one (upper not
+ * above lower, NaN, infinite) is thus refused (WindowEigenvalues, Problem.h), never taken for
+ * "off". The one rule of every path.
+ */
+inline bool IsFrequencyWindow(double lower, double upper)
+{
+  return !(lower == 0.0 && upper == 0.0);
+}
+
 /// What ComputeBasis computes and how.
 struct BasisOptions
 {
@@ -145,7 +156,7 @@ struct BasisOptions
   /// with a solver that keeps only the vectors of its last bands (EigenOptions::KeepEigenvectors).
   bool EigenvaluesOnly = false;
   /**
-   * The frequency window [LowerFrequency, UpperFrequency): when UpperFrequency > 0, the
+   * The frequency window [LowerFrequency, UpperFrequency): when IsFrequencyWindow, the
    * harmonics whose frequency omega = sqrt(lambda) lies in it are computed instead of the
    * NumberOfHarmonics smallest. Their number is proven by two inertia counts (Sylvester's law:
    * the negative pivots of L - omega^2 M are the eigenvalues below omega^2), per connected

@@ -252,7 +252,7 @@ Problem PrepareProblem(const TriangleMesh& mesh,
   BasisResult& result)
 {
   Problem problem;
-  problem.Window = options.UpperFrequency > 0.0;
+  problem.Window = IsFrequencyWindow(options.LowerFrequency, options.UpperFrequency);
   if (mesh.IsPointCloud())
   {
     CloudProblem(mesh, options, monitor, result, problem);

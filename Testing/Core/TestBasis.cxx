@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace spectral;
@@ -682,6 +683,17 @@ void FrequencyWindow()
   options.LowerFrequency = 3.0;
   options.UpperFrequency = 2.0;
   CheckThrows<InvalidInput>([&]() { ComputeBasis(sphere, options); }, "an empty window is refused");
+  // Only [0, 0) is off: an upper end at or below 0, or NaN, is an error, not the m smallest (they
+  // were computed as if there were no window).
+  for (const std::pair<double, double>& window : std::vector<std::pair<double, double>>{
+         { 5.0, 0.0 }, { 5.0, -1.0 }, { 2.0, std::nan("") }, { 0.0, -3.0 } })
+  {
+    options.LowerFrequency = window.first;
+    options.UpperFrequency = window.second;
+    CheckThrows<InvalidInput>([&]() { ComputeBasis(sphere, options); },
+      "the window [" + std::to_string(window.first) + ", " + std::to_string(window.second) +
+        ") is refused");
+  }
 
   // A mesh in micrometres (a sphere of radius 1e6): the message gives the window as asked, not
   // rounded to six decimals (it said [0.000003, 0.000003)).

@@ -322,6 +322,20 @@ void DamagedAndForeignFiles()
   ExpectRefused(path, BasisFileError::Kind::Foreign, "a three-byte file");
   std::remove(path.c_str());
   ExpectRefused(path, BasisFileError::Kind::Io, "a missing file");
+  // A directory: named so, not 'too short' (its size is the directory's).
+  Check(mkdir(path.c_str(), 0700) == 0, "made a directory under the name");
+  try
+  {
+    ReadBasisFileHeader(path);
+    Check(false, "a directory: accepted");
+  }
+  catch (const BasisFileError& e)
+  {
+    Check(e.Which == BasisFileError::Kind::Foreign &&
+        std::string(e.what()).find("is a directory") != std::string::npos,
+      std::string("a directory: ") + e.what());
+  }
+  rmdir(path.c_str());
 }
 
 //------------------------------------------------------------------------------

@@ -388,6 +388,11 @@ BasisFileHeader ReadBasisFileHeader(const std::string& path)
   {
     throw BasisFileError(BasisFileError::Kind::Io, SystemError("cannot stat", path));
   }
+  if (S_ISDIR(status.st_mode))
+  {
+    throw BasisFileError(BasisFileError::Kind::Foreign,
+      "'" + path + "' is a directory, not a manifold harmonics basis file: name a file in it");
+  }
   const std::uint64_t fileSize = static_cast<std::uint64_t>(status.st_size);
   const auto unusable = [&path](const std::string& why) {
     return BasisFileError(BasisFileError::Kind::Unusable, "the basis file '" + path + "' " + why);

@@ -171,7 +171,7 @@ void Engine::Number()
     owned);
   this->Result.GlobalPoints = this->Numbers.Total;
   this->Result.OwnedPoints = this->Numbers.OwnedCount;
-  if (this->Options.UpperFrequency > 0.0)
+  if (IsFrequencyWindow(this->Options.LowerFrequency, this->Options.UpperFrequency))
   {
     return; // The window's inertia counts decide m (Interval).
   }
@@ -207,7 +207,7 @@ void Engine::ZeroModes()
 {
   this->Parts =
     DistributedComponents(this->Comm, this->Mesh, this->Numbers, this->Ops.Lumped.Object);
-  if (this->Options.UpperFrequency > 0.0)
+  if (IsFrequencyWindow(this->Options.LowerFrequency, this->Options.UpperFrequency))
   {
     return; // The window decides m and whether the constants are among its pairs (Interval).
   }
@@ -225,7 +225,7 @@ void Engine::ZeroModes()
 void Engine::Interval()
 {
   this->Progress.Begin("Interval");
-  if (this->Options.UpperFrequency > 0.0)
+  if (IsFrequencyWindow(this->Options.LowerFrequency, this->Options.UpperFrequency))
   {
     this->WindowInterval();
     return;

@@ -76,11 +76,11 @@ struct DistributedOptions
   bool WeldSeams = true;
   double SeamTolerance = DefaultSeamTolerance;
   /**
-   * The frequency window [LowerFrequency, UpperFrequency): when UpperFrequency > 0, the harmonics
-   * whose frequency omega = sqrt(lambda) lies in it instead of the NumberOfHarmonics smallest, as
-   * BasisOptions's (the same rule, Problem.h WindowEigenvalues): their number is the difference
-   * of the inertia counts at its ends, and the spectrum slicing starts at its lower end (the
-   * constants are among them when it starts at 0).
+   * The frequency window [LowerFrequency, UpperFrequency): when IsFrequencyWindow (Basis.h), the
+   * harmonics whose frequency omega = sqrt(lambda) lies in it instead of the NumberOfHarmonics
+   * smallest, as BasisOptions's (the same rule, Problem.h WindowEigenvalues): their number is the
+   * difference of the inertia counts at its ends, and the spectrum slicing starts at its lower end
+   * (the constants are among them when it starts at 0).
    */
   double LowerFrequency = 0.0;
   double UpperFrequency = 0.0;

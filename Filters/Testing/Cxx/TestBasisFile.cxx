@@ -40,6 +40,7 @@
 #include <string>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace
 {
@@ -384,7 +385,38 @@ bool Reuse()
   ok &=
     Check(again->GetBasisReused() && MaxDifference(HarmonicsOf(again), HarmonicsOf(other)) == 0.0,
       "the overwritten file is reused for the new mesh");
+
+  // Where the name is not used, a warning says so: Storage In Memory, EigenvaluesOnly.
+  auto inMemory = NamedBasis(moved, path, Harmonics - 10);
+  inMemory->SetStorageToInMemory();
+  const ManifoldHarmonicsTest::Messages inMemoryMessages(inMemory);
+  inMemory->Update();
+  ok &= Check(!inMemory->GetBasisReused() &&
+      inMemory->GetStorageUsed() == vtkManifoldHarmonicBasis::IN_MEMORY &&
+      inMemoryMessages->GetWarningMessage().find("Storage is In Memory") != std::string::npos,
+    "a BasisFileName with Storage In Memory is not used, with a warning: " +
+      inMemoryMessages->GetWarningMessage());
+  auto spectrum = NamedBasis(moved, path, Harmonics - 10);
+  spectrum->EigenvaluesOnlyOn();
+  const ManifoldHarmonicsTest::Messages spectrumMessages(spectrum);
+  spectrum->Update();
+  ok &= Check(spectrumMessages->GetWarningMessage().find("EigenvaluesOnly keeps no harmonics") !=
+      std::string::npos,
+    "a BasisFileName with EigenvaluesOnly is not used, with a warning: " +
+      spectrumMessages->GetWarningMessage());
+
+  // A directory under the name: an error that says so.
   std::remove(path.c_str());
+  const std::string directory = Directory + "/TestBasisFileDirectory.mhb";
+  mkdir(directory.c_str(), 0700);
+  auto toDirectory = NamedBasis(moved, directory, Harmonics - 10);
+  const ManifoldHarmonicsTest::Messages directoryMessages(toDirectory);
+  toDirectory->Update();
+  ok &= Check(directoryMessages->GetErrorMessage().find("is a directory") != std::string::npos &&
+      toDirectory->GetStorageUsed() == vtkManifoldHarmonicBasis::AUTOMATIC,
+    "a directory as BasisFileName: an error naming it, and no storage reported: " +
+      directoryMessages->GetErrorMessage());
+  rmdir(directory.c_str());
   return ok;
 }
 

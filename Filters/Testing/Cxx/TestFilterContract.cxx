@@ -157,11 +157,32 @@ bool AbortsEmptyEveryPort()
     const bool succeeded = Run(filter);
     ok &= Check(succeeded && !errors->GetError(), name + " succeeds without an error on abort");
     ok &= Check(OutputsEmpty(filter), name + " leaves every output port empty after an abort");
-    // The abort stopped that request only: the next one runs whole (without AbortExecuteOff).
+    // The abort stopped that request only: the next one runs whole (without AbortExecuteOff,
+    // and without a change of setting: the emptied output is not kept as up to date).
     filter->RemoveObserver(observer);
-    filter->Modified();
     ok &= Check(Run(filter) && !OutputsEmpty(filter), name + " runs whole after an abort");
   }
+  // Downstream too: the basis aborted under a transform; the transform's next update runs both.
+  vtkNew<vtkManifoldHarmonicBasis> basis;
+  basis->SetInputData(ManifoldHarmonicsTest::UnitSphere(16, 12));
+  basis->SetNumberOfHarmonics(12);
+  vtkNew<vtkManifoldHarmonicTransform> transform;
+  transform->SetInputConnection(basis->GetOutputPort());
+  vtkNew<vtkTest::ErrorObserver> transformErrors; // its message about the missing basis
+  transform->AddObserver(vtkCommand::ErrorEvent, transformErrors);
+  transform->AddObserver(vtkCommand::WarningEvent, transformErrors);
+  vtkNew<vtkTest::ErrorObserver> executiveErrors;
+  transform->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  vtkNew<vtkCallbackCommand> abort;
+  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+    { vtkAlgorithm::SafeDownCast(caller)->AbortExecuteOn(); });
+  const unsigned long observer = basis->AddObserver(vtkCommand::ProgressEvent, abort);
+  Run(transform);
+  ok &= Check(OutputsEmpty(basis), "the basis under a transform is empty after an abort");
+  basis->RemoveObserver(observer);
+  ok &= Check(Run(transform), "the transform's next update succeeds");
+  ok &= Check(!OutputsEmpty(basis), "the transform's next update runs the aborted basis again");
+  ok &= Check(!OutputsEmpty(transform), "the transform's next update runs the transform again");
   return ok;
 }
 

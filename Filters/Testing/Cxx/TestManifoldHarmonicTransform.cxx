@@ -302,6 +302,14 @@ bool TestErrors()
   mismatched->SetFieldData(otherFieldData);
   ok &= ExpectError(mismatched, vtkManifoldHarmonicBasis::EigenvaluesArrayName(), "5 values");
 
+  // A NaN in the harmonics (a damaged basis file): the error names the basis, not the points.
+  vtkNew<vtkPolyData> damaged;
+  damaged->DeepCopy(basis);
+  damaged->GetPointData()
+    ->GetArray(vtkManifoldHarmonicBasis::HarmonicsArrayName())
+    ->SetComponent(7, 3, std::nan(""));
+  ok &= ExpectError(damaged, "The basis holds harmonics that are not finite", "a damaged basis");
+
   // Points without polygons, passed through by the basis without a basis (it warns): the error
   // says why there is no basis instead of asking for the filter that is upstream.
   vtkSmartPointer<vtkPolyData> cloud = LinesOnly(sphere->GetOutput()->GetPoints());
