@@ -265,20 +265,17 @@ vtkSmartPointer<vtkAbstractArray> ThroughMap(vtkAbstractArray* array,
     spectral::TransferThroughMap(source, target, result.Map, signal.View());
   for (std::size_t j = 0; j < result.CorrespondingPointIds.size(); ++j)
   {
-    if (result.CorrespondingPointIds[j] >= 0 &&
-      !values.row(static_cast<Eigen::Index>(j)).allFinite())
+    if (result.CorrespondingPointIds[j] < 0)
+    {
+      values.row(static_cast<Eigen::Index>(j))
+        .setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    else if (!values.row(static_cast<Eigen::Index>(j)).allFinite())
     {
       // One NaN or infinity on the source's surface spreads over all its coefficients.
       throw spectral::InvalidInput(vtkManifoldHarmonicsArrays::NotFiniteOnSurface(array->GetName(),
         "its transfer through the functional map",
         "Transfer it as a label (LabelArrays) or leave it out (TransferArrays off)"));
-    }
-  }
-  for (std::size_t j = 0; j < result.CorrespondingPointIds.size(); ++j)
-  {
-    if (result.CorrespondingPointIds[j] < 0)
-    {
-      values.row(static_cast<Eigen::Index>(j)).setConstant(std::numeric_limits<double>::quiet_NaN());
     }
   }
   return vtkManifoldHarmonicsArrays::NewArrayLike(data, values, name.c_str());
@@ -399,11 +396,9 @@ vtkDataObject* vtkFunctionalMap::GetSource()
 int vtkFunctionalMap::Execute(vtkPointSet* target, vtkPointSet* output, vtkTable* table)
 {
   // (The weights, NaN or not, are checked by the core: ComputeFunctionalMap.)
-  const std::string nan =
-    vtkManifoldHarmonicsParameters::NotANumber({ { "MemoryLimit", this->MemoryLimit } });
-  if (!nan.empty())
+  if (!vtkManifoldHarmonicsParameters::AcceptNumbers(
+        this, { { "MemoryLimit", this->MemoryLimit } }))
   {
-    vtkErrorMacro(<< nan);
     return 0;
   }
   vtkPointSet* inputs[2] = { target,

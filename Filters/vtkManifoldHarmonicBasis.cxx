@@ -868,13 +868,11 @@ int vtkManifoldHarmonicBasis::Execute(vtkPointSet* input,
 //------------------------------------------------------------------------------
 int vtkManifoldHarmonicBasis::ChooseAndRun(vtkPointSet* input, vtkPointSet* output)
 {
-  const std::string nan =
-    vtkManifoldHarmonicsParameters::NotANumber({ { "Tolerance", this->Tolerance },
-      { "SeamTolerance", this->SeamTolerance },
-      { "MemoryLimit", this->MemoryLimit } });
-  if (!nan.empty())
+  if (!vtkManifoldHarmonicsParameters::AcceptNumbers(this,
+        { { "Tolerance", this->Tolerance },
+          { "SeamTolerance", this->SeamTolerance },
+          { "MemoryLimit", this->MemoryLimit } }))
   {
-    vtkErrorMacro(<< nan);
     return 0;
   }
   if ((this->Storage == FILE || !this->BasisFileName.empty()) &&

@@ -230,13 +230,11 @@ int vtkManifoldHarmonicSmoothing::Execute(vtkPointSet* input,
 {
   vtkDebugMacro(<< "Smoothing with " << this->NumberOfHarmonics << " harmonics, cutoff fraction "
                 << this->CutoffFraction << ", basis precision " << this->BasisPrecision);
-  const std::string nan =
-    vtkManifoldHarmonicsParameters::NotANumber({ { "CutoffFraction", this->CutoffFraction },
-      { "SeamTolerance", this->SeamTolerance },
-      { "MemoryLimit", this->MemoryLimit } });
-  if (!nan.empty())
+  if (!vtkManifoldHarmonicsParameters::AcceptNumbers(this,
+        { { "CutoffFraction", this->CutoffFraction },
+          { "SeamTolerance", this->SeamTolerance },
+          { "MemoryLimit", this->MemoryLimit } }))
   {
-    vtkErrorMacro(<< nan);
     return 0;
   }
   // Nothing to smooth without polygons: pass the input on, as the basis does, rather than let

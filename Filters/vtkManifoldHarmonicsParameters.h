@@ -7,7 +7,7 @@
  * NumberOfHarmonics is a parameter of vtkManifoldHarmonicBasis and of
  * vtkManifoldHarmonicSmoothing, which refuse a value below 1 with the same error. (Its default
  * is vtkManifoldHarmonicBasis::DEFAULT_NUMBER_OF_HARMONICS.) MemoryLimit is a parameter of both
- * too, in MiB (MemoryLimitBytes). NaN settings are refused by all filters (NotANumber). Not
+ * too, in MiB (MemoryLimitBytes). NaN settings are refused by all filters (AcceptNumbers). Not
  * installed and not wrapped.
  */
 #ifndef vtkManifoldHarmonicsParameters_h
@@ -20,7 +20,7 @@
 #include <algorithm>        // For std::max
 #include <cmath>            // For std::isnan
 #include <cstdint>          // For std::uint64_t
-#include <initializer_list> // For NotANumber
+#include <initializer_list> // For AcceptNumbers
 #include <iomanip>          // For std::setprecision
 #include <sstream>          // For Bytes
 #include <string>           // For Bytes
@@ -46,11 +46,12 @@ inline bool AcceptNumberOfHarmonics(vtkObject* self, int requested, int current)
 }
 
 /**
- * An error text naming the parameters among `values` (name, value) that are NaN, empty if none.
- * vtkSetClampMacro lets NaN through; the filters refuse it when they execute, with the same
- * settings on every process of a distributed run.
+ * Whether `self` may run with the settings `values` (name, value): none is NaN. If one is, an
+ * error of `self` names them all. vtkSetClampMacro lets NaN through; the filters refuse it when
+ * they execute, with the same settings on every process of a distributed run.
  */
-inline std::string NotANumber(std::initializer_list<std::pair<const char*, double>> values)
+inline bool AcceptNumbers(vtkObject* self,
+  std::initializer_list<std::pair<const char*, double>> values)
 {
   std::string names;
   int count = 0;
@@ -61,8 +62,12 @@ inline std::string NotANumber(std::initializer_list<std::pair<const char*, doubl
       names += (count++ > 0 ? ", " : "") + std::string(value.first);
     }
   }
-  return count == 0 ? names
-                    : names + (count == 1 ? " is" : " are") + " NaN (not a number): set a number.";
+  if (count > 0)
+  {
+    vtkErrorWithObjectMacro(
+      self, << names << (count == 1 ? " is" : " are") << " NaN (not a number): set a number.");
+  }
+  return count == 0;
 }
 
 /// MemoryLimit (MiB, vtkManifoldHarmonicBasis and vtkManifoldHarmonicSmoothing) in bytes for the

@@ -43,12 +43,9 @@ int Clamped(int requested,
 //------------------------------------------------------------------------------
 // Warnings about the components, before the solve: how many zero eigenvalues they give, how to
 // weld unwelded seams, and a request for no more harmonics than components.
-void ReportComponents(const Problem& problem,
-  int components,
-  int m,
-  const Monitor& monitor,
-  BasisResult& result)
+void ReportComponents(const Problem& problem, int m, const Monitor& monitor, BasisResult& result)
 {
+  const int components = problem.Operators.Components.Count;
   if (components <= 1)
   {
     return;
@@ -277,7 +274,7 @@ Problem PrepareProblem(const TriangleMesh& mesh,
   result.ConstantHarmonics = ops.ConstantHarmonics;
   if (ops.ConstantHarmonics && !problem.Window)
   {
-    ReportComponents(problem, result.Components, problem.Harmonics, monitor, result);
+    ReportComponents(problem, problem.Harmonics, monitor, result);
   }
   return problem;
 }
@@ -287,7 +284,7 @@ void ReportComponentsOf(const Problem& problem, int m, const Monitor& monitor, B
 {
   if (problem.Operators.ConstantHarmonics)
   {
-    ReportComponents(problem, problem.Operators.Components.Count, m, monitor, result);
+    ReportComponents(problem, m, monitor, result);
   }
 }
 } // namespace spectral

@@ -714,32 +714,25 @@ OpenSeams FindOpenSeams(const TriangleMesh& mesh)
   OpenSeams found;
   const Triangles& faces = mesh.Faces;
   const Eigen::Index n = mesh.Vertices.rows();
-  TriangleMesh surface; // the triangles whose indices are in range
-  surface.Vertices = mesh.Vertices;
-  surface.Faces.resize(faces.rows(), 3);
-  Eigen::Index kept = 0;
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+  // A point id out of range: the core refuses the mesh (PrepareMesh), nothing to look for.
+  if (faces.rows() == 0 || faces.minCoeff() < 0 || faces.maxCoeff() >= n)
   {
-    if (faces.row(f).minCoeff() >= 0 && faces.row(f).maxCoeff() < n)
-    {
-      surface.Faces.row(kept++) = faces.row(f);
-    }
+    return found;
   }
-  surface.Faces.conservativeResize(kept, 3);
-  const double radius = OpenSeamGap * MeanEdgeLength(surface);
+  const double radius = OpenSeamGap * MeanEdgeLength(mesh);
   if (!(radius > 0.0) || !std::isfinite(radius))
   {
     return found;
   }
   // Every edge (smaller id first) once per triangle; an edge met once is on the boundary.
   std::vector<std::pair<int, int>> edges;
-  edges.reserve(static_cast<std::size_t>(3 * kept));
-  for (Eigen::Index f = 0; f < kept; ++f)
+  edges.reserve(static_cast<std::size_t>(3 * faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
   {
     for (int c = 0; c < 3; ++c)
     {
-      const int a = surface.Faces(f, c);
-      const int b = surface.Faces(f, (c + 1) % 3);
+      const int a = faces(f, c);
+      const int b = faces(f, (c + 1) % 3);
       if (a != b)
       {
         edges.emplace_back(std::min(a, b), std::max(a, b));
@@ -773,18 +766,19 @@ OpenSeams FindOpenSeams(const TriangleMesh& mesh)
       xyz.insert(xyz.end(), mesh.Vertices.data() + 3 * i, mesh.Vertices.data() + 3 * i + 3);
     }
   }
-  const double diagonal = BoundingBoxDiagonal(mesh.Vertices);
-  if (ids.size() < 2 || !(diagonal > 0.0) || !std::isfinite(diagonal))
-  {
-    return found;
-  }
-  // The boundary points welded within the radius (a fraction of the diagonal of the mesh's box):
-  // each later copy against the first copy of its group, unless an edge joins them.
+  // The boundary points welded within the radius (a fraction of the diagonal of the mesh's box,
+  // which WeldPoints takes): each later copy against the first copy of its group, unless an
+  // edge joins them.
   double box[6];
   for (int d = 0; d < 3; ++d)
   {
     box[2 * d] = mesh.Vertices.col(d).minCoeff();
     box[2 * d + 1] = mesh.Vertices.col(d).maxCoeff();
+  }
+  const double diagonal = BoundingBoxDiagonal(mesh.Vertices);
+  if (ids.size() < 2 || !(diagonal > 0.0) || !std::isfinite(diagonal))
+  {
+    return found;
   }
   const Welding near =
     WeldPoints(xyz.data(), static_cast<long long>(ids.size()), box, radius / diagonal);

@@ -221,9 +221,9 @@ struct OpenSeams
 /**
  * The boundary points of the surface `mesh` (on an edge of a single triangle) that lie within
  * OpenSeamGap times its mean edge length of another boundary point they share no edge with: a
- * seam left open, which makes the harmonics those of a surface cut there. Triangles with an
- * index out of range are skipped; a mesh without triangles, or with a non-finite point on one,
- * has none.
+ * seam left open, which makes the harmonics those of a surface cut there. A mesh without
+ * triangles, with a point id out of range (which PrepareMesh refuses) or with a non-finite point
+ * on a triangle has none.
  */
 OpenSeams FindOpenSeams(const TriangleMesh& mesh);
 
